@@ -1,0 +1,94 @@
+#ifndef mpm_grid_background_grid_h
+#define mpm_grid_background_grid_h
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/distributed/tria.h>
+
+#include <deal.II/dofs/dof_handler.h>
+
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q1.h>
+
+#include <string>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * The Eulerian background mesh: a p4est-distributed triangulation of
+   * (possibly irregular) quadrilaterals or hexahedra, the bilinear
+   * isoparametric mapping MappingQ1, and the FE_Q(1)^dim DoFHandler whose
+   * degrees of freedom are the nodal vector fields (momentum, force,
+   * velocity) of the MPM step. Vertex ordering and reference cell are
+   * deal.II's: the unit square [0,1]^dim with vertices in lexicographic
+   * order.
+   *
+   * The mesh comes either from a Gmsh .msh file (boundary ids from the
+   * physical tags of the boundary lines, material ids from the physical tags
+   * of the surfaces) or from a GridGenerator function named in the
+   * parameter file.
+   */
+  template <int dim>
+  class BackgroundGrid
+  {
+  public:
+    explicit BackgroundGrid(const MPI_Comm comm);
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Read the "Mesh" subsection. @p input_directory is the directory of
+     * the .prm file, against which a relative mesh file name is resolved.
+     */
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &input_directory);
+
+    /**
+     * Build the triangulation and distribute the degrees of freedom.
+     */
+    void
+    create();
+
+    /**
+     * Distribute degrees of freedom and index sets again, e.g. after the
+     * triangulation was repartitioned.
+     */
+    void
+    setup_dofs();
+
+    /**
+     * Smallest edge length over the whole mesh: the length scale of the
+     * CFL condition.
+     */
+    double
+    minimum_cell_size() const
+    {
+      return min_cell_size;
+    }
+
+    parallel::distributed::Triangulation<dim> triangulation;
+    MappingQ1<dim>                            mapping;
+    FESystem<dim>                             fe;
+    DoFHandler<dim>                           dof_handler;
+    IndexSet                                  locally_owned_dofs;
+    IndexSet                                  locally_relevant_dofs;
+
+  private:
+    void
+    create_subdivided_hyper_rectangle();
+
+    MPI_Comm     mpi_communicator;
+    std::string  source;
+    std::string  mesh_file;
+    std::string  generator_name;
+    std::string  generator_arguments;
+    unsigned int n_global_refinements = 0;
+    double       min_cell_size        = 0;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,110 @@
+#ifndef mpm_material_points_point_generator_h
+#define mpm_material_points_point_generator_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/parsed_function.h>
+#include <deal.II/base/point.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/background_grid.h>
+#include <mpm/materials/material_library.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * Creates the material points of a scene from regions described in the
+   * parameter file:
+   *
+   *   subsection Material points
+   *     set List of regions = block
+   *     subsection block
+   *       set Type = box            # box | polygon | cells | file
+   *       set Box  = 0, 0 : 1, 1
+   *       set Points per cell = 4   # per direction
+   *       set Material = rock
+   *       set Initial velocity = 0; 0
+   *       set Initial stress = geostatic
+   *
+   * Box, polygon and cells regions place n^dim points per cell at the
+   * centres of an n x n sub-grid of the reference cell; each point gets the
+   * volume of its part of the cell (det J times the sub-cell weight, so the
+   * volumes of a cell's points add up to the cell's area exactly) and the
+   * mass density times that volume. A point belongs to a box or polygon
+   * region if its position lies inside it, so a region that does not
+   * conform to the mesh is approximated to within a sub-cell.
+   */
+  template <int dim>
+  class PointGenerator
+  {
+  public:
+    static void
+    declare_name_list(ParameterHandler &prm);
+
+    static std::vector<std::string>
+    read_name_list(ParameterHandler &prm);
+
+    static void
+    declare_parameters(ParameterHandler               &prm,
+                       const std::vector<std::string> &names);
+
+    void
+    parse_parameters(ParameterHandler      &prm,
+                     const MaterialLibrary &materials,
+                     const std::string     &input_directory);
+
+    /**
+     * Insert the points of every region into @p particle_handler, with
+     * globally unique ids 0, 1, ... (ordered by rank, then region, then
+     * cell). @p gravity is needed for the geostatic initial stress.
+     */
+    void
+    generate(const BackgroundGrid<dim>      &grid,
+             const MaterialLibrary          &materials,
+             const Tensor<1, dim>           &gravity,
+             Particles::ParticleHandler<dim> &particle_handler) const;
+
+  private:
+    struct Region
+    {
+      std::string                 name;
+      std::string                 type;
+      Point<dim>                  box_lower, box_upper;
+      std::vector<Point<2>>       polygon;
+      unsigned int                cell_material_id = 0;
+      std::string                 file_name;
+      unsigned int                points_per_cell = 2;
+      unsigned int                material_index  = 0;
+      std::string                 initial_stress;
+      double                      k0 = -1;
+      double                      surface_elevation = 0;
+      bool                        automatic_surface = true;
+      std::shared_ptr<Functions::ParsedFunction<dim>> initial_velocity;
+      std::shared_ptr<Functions::ParsedFunction<dim>> initial_stress_function;
+
+      bool
+      contains(const Point<dim> &p) const;
+    };
+
+    struct NewPoint
+    {
+      Point<dim>                                         location;
+      Point<dim>                                         reference_location;
+      typename Triangulation<dim>::active_cell_iterator cell;
+      double                                             volume;
+    };
+
+    std::vector<NewPoint>
+    points_of_region(const Region &region, const BackgroundGrid<dim> &grid) const;
+
+    std::vector<Region> regions;
+  };
+} // namespace MPM
+
+#endif

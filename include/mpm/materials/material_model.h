@@ -1,0 +1,153 @@
+#ifndef mpm_materials_material_model_h
+#define mpm_materials_material_model_h
+
+#include <deal.II/base/array_view.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * The interface of a constitutive model. A model maps a strain increment
+   * (the symmetric part of dt * grad v at a material point) to a new stress,
+   * using and updating the point's own state variables (n_state_variables()
+   * doubles, e.g. accumulated plastic strain). Stress and strain are 3x3 in
+   * every dimension, so 2D is plane strain. The class is not templated on
+   * dim for that reason.
+   *
+   * Sign convention: tension positive.
+   *
+   * To add a model, write one .cc file with a class derived from this one
+   * and register it at the end of that file with
+   * MPM_REGISTER_MATERIAL_MODEL (see linear_elastic.cc); it then appears as
+   * a choice of "Materials/<name>/Model" and its parameters in the
+   * subsection of that name.
+   */
+  class MaterialModel
+  {
+  public:
+    virtual ~MaterialModel() = default;
+
+    /**
+     * Read the parameters of this model; the handler is inside the model's
+     * own subsection.
+     */
+    virtual void
+    parse_parameters(ParameterHandler &prm) = 0;
+
+    /**
+     * Stress update for one point. @p strain_increment is the
+     * symmetric velocity gradient times dt.
+     */
+    virtual void
+    update_stress(const SymmetricTensor<2, 3> &strain_increment,
+                  SymmetricTensor<2, 3>       &stress,
+                  const ArrayView<double>     &state) const = 0;
+
+    /**
+     * Stored elastic energy per unit volume for the given stress, used by
+     * the energy statistics.
+     */
+    virtual double
+    strain_energy_density(const SymmetricTensor<2, 3> &stress) const = 0;
+
+    /**
+     * The P-wave (constrained) modulus lambda + 2 mu: with the density it
+     * gives the elastic wave speed of the CFL condition.
+     */
+    virtual double
+    p_wave_modulus() const = 0;
+
+    /**
+     * Coefficient of earth pressure at rest used by the geostatic initial
+     * stress when the user does not give one; for an elastic solid in
+     * uniaxial strain nu / (1 - nu).
+     */
+    virtual double
+    default_k0() const = 0;
+
+    virtual unsigned int
+    n_state_variables() const
+    {
+      return 0;
+    }
+
+    virtual std::vector<std::string>
+    state_variable_names() const
+    {
+      return {};
+    }
+
+    virtual void
+    initialize_state(const ArrayView<double> &state) const
+    {
+      (void)state;
+    }
+  };
+
+
+  /**
+   * The registry of material models: each model file registers its name, a
+   * function that declares its parameters and a function that creates it.
+   */
+  namespace MaterialModelFactory
+  {
+    using Declarer = std::function<void(ParameterHandler &)>;
+    using Creator  = std::function<std::unique_ptr<MaterialModel>()>;
+
+    /**
+     * Called by MPM_REGISTER_MATERIAL_MODEL at program start.
+     */
+    bool
+    register_model(const std::string &name,
+                   const std::string &description,
+                   const Declarer    &declare,
+                   const Creator     &create);
+
+    /**
+     * Names joined by '|', for a Patterns::Selection.
+     */
+    std::string
+    model_names();
+
+    /**
+     * Declare, for every registered model, its subsection (named like the
+     * model) and its parameters.
+     */
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Create the model called @p name and let it read its subsection.
+     */
+    std::unique_ptr<MaterialModel>
+    create(const std::string &name, ParameterHandler &prm);
+  } // namespace MaterialModelFactory
+} // namespace MPM
+
+/**
+ * Register a material model class under a name shown in the parameter file.
+ * The class needs a static declare_parameters(ParameterHandler &).
+ */
+#define MPM_CONCAT_IMPL(a, b) a##b
+#define MPM_CONCAT(a, b) MPM_CONCAT_IMPL(a, b)
+#define MPM_REGISTER_MATERIAL_MODEL(classname, name, description)         \
+  namespace                                                               \
+  {                                                                       \
+    const bool MPM_CONCAT(mpm_material_model_registered_, __LINE__) =     \
+      MPM::MaterialModelFactory::register_model(                          \
+        name, description, &classname::declare_parameters, []() {         \
+          return std::unique_ptr<MPM::MaterialModel>(                     \
+            std::make_unique<classname>());                               \
+        });                                                               \
+  }
+
+#endif

@@ -1,0 +1,89 @@
+#ifndef mpm_output_output_writer_h
+#define mpm_output_output_writer_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/background_grid.h>
+
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * Writes what a user opens in ParaView: the mesh once (mesh.pvtu, with
+   * material and boundary information), the material points with all their
+   * properties at every output time (particles-NNNNN.pvtu, indexed by
+   * particles.pvd), in the output directory.
+   */
+  template <int dim>
+  class OutputWriter
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Create the output directory (InputError if that fails).
+     */
+    void
+    initialize(const MPI_Comm comm) const;
+
+    const std::string &
+    directory() const
+    {
+      return output_directory;
+    }
+
+    /**
+     * Is it time for output at @p time (always at the first and last step)?
+     */
+    bool
+    output_due(const double time, const double dt, const double end_time) const;
+
+    void
+    mark_written(const double time);
+
+    void
+    write_mesh(const BackgroundGrid<dim> &grid) const;
+
+    void
+    write_particles(const Particles::ParticleHandler<dim> &particle_handler,
+                    const std::vector<std::string>        &property_names,
+                    const double                           time,
+                    const unsigned int                     output_index,
+                    const MPI_Comm                         comm);
+
+    bool
+    particles_enabled() const
+    {
+      return write_particle_files;
+    }
+
+    double
+    progress_interval() const
+    {
+      return progress_seconds;
+    }
+
+  private:
+    std::string                               output_directory = "output";
+    double                                    output_interval  = 0.1;
+    bool                                      write_particle_files = true;
+    bool                                      write_mesh_file      = true;
+    double                                    progress_seconds     = 10;
+    double                                    last_output_time     = -1e300;
+    std::vector<std::pair<double, std::string>> pvd_records;
+  };
+} // namespace MPM
+
+#endif

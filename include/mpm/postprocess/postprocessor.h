@@ -1,0 +1,85 @@
+#ifndef mpm_postprocess_postprocessor_h
+#define mpm_postprocess_postprocessor_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <memory>
+#include <ostream>
+#include <string>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  template <int dim>
+  class Simulator;
+
+  /**
+   * A postprocessor watches the run and compares it with a reference
+   * (an analytical solution, a conservation law). It is called after
+   * every step and writes its findings, numbers beside their reference, to
+   * the run's report (report.txt in the output directory), which is also
+   * what the regression tests compare.
+   *
+   * Selected in "Postprocess/List of postprocessors"; each has a
+   * subsection of its own for its parameters.
+   */
+  template <int dim>
+  class Postprocessor
+  {
+  public:
+    virtual ~Postprocessor() = default;
+
+    virtual void
+    parse_parameters(ParameterHandler &prm)
+    {
+      (void)prm;
+    }
+
+    /**
+     * Called once after the points were created, before the first step.
+     */
+    virtual void
+    initialize(const Simulator<dim> &simulator)
+    {
+      (void)simulator;
+    }
+
+    /**
+     * Called after every step; @p output_step tells whether this step is an
+     * output time.
+     */
+    virtual void
+    execute(const Simulator<dim> &simulator, const bool output_step) = 0;
+
+    /**
+     * Called at the end of the run; write the summary to @p report.
+     */
+    virtual void
+    write_report(const Simulator<dim> &simulator, std::ostream &report) = 0;
+  };
+
+
+  namespace Postprocessors
+  {
+    /**
+     * Names joined by '|' for Patterns::MultipleSelection.
+     */
+    std::string
+    names();
+
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Create the postprocessor @p name and let it read its subsection of
+     * "Postprocess".
+     */
+    template <int dim>
+    std::unique_ptr<Postprocessor<dim>>
+    create(const std::string &name, ParameterHandler &prm);
+  } // namespace Postprocessors
+} // namespace MPM
+
+#endif

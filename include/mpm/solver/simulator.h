@@ -1,0 +1,257 @@
+#ifndef mpm_solver_simulator_h
+#define mpm_solver_simulator_h
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/boundary_conditions/boundary_conditions.h>
+#include <mpm/grid/background_grid.h>
+#include <mpm/grid/nodal_vector.h>
+#include <mpm/grid/q1_shape_functions.h>
+#include <mpm/material_points/point_generator.h>
+#include <mpm/materials/material_library.h>
+#include <mpm/output/output_writer.h>
+#include <mpm/postprocess/postprocessor.h>
+#include <mpm/solver/statistics.h>
+#include <mpm/solver/time_stepping.h>
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * The explicit MPM solver with lumped mass. One step (see do_time_step()
+   * and doc/algorithm.md):
+   *
+   *  1. particle-to-grid: nodal mass and momentum;
+   *  2. nodal velocity v = p / m, constrained by the boundary conditions;
+   *  3. USF only: stress update from the strain rate of this velocity;
+   *  4. particle-to-grid: internal force -V sigma grad N and gravity m N g;
+   *  5. nodal update: a = f / m, Coulomb friction in each wall node's frame,
+   *     v_new = v + dt a, constrained again;
+   *  6. grid-to-particle: velocity with a FLIP/PIC blend, position with
+   *     v_new;
+   *  7. USL: stress update from v_new; MUSL: point momenta mapped to the
+   *     grid again and the stress updated from that velocity;
+   *  8. points that left their cell are relocated.
+   *
+   * Only cells that hold material points take part: every loop runs over
+   * the points, grouped by cell, and over the nodes of those cells.
+   */
+  template <int dim>
+  class Simulator
+  {
+  public:
+    /**
+     * Names of the user-named subsections (materials, point regions,
+     * boundaries), known after the first parsing pass.
+     */
+    struct NameLists
+    {
+      std::vector<std::string> materials;
+      std::vector<std::string> regions;
+      std::vector<std::string> boundaries;
+    };
+
+    /**
+     * First parsing pass: the entries that decide which subsections exist.
+     */
+    static void
+    declare_name_lists(ParameterHandler &prm);
+
+    static NameLists
+    read_name_lists(ParameterHandler &prm);
+
+    /**
+     * Second pass: every parameter of a run.
+     */
+    static void
+    declare_parameters(ParameterHandler &prm, const NameLists &names);
+
+    explicit Simulator(const MPI_Comm comm);
+
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &input_directory);
+
+    /**
+     * Set up the scene and run it to the end time.
+     */
+    void
+    run();
+
+    /**
+     * @name Access for postprocessors and tests.
+     * @{
+     */
+    const Particles::ParticleHandler<dim> &
+    get_particle_handler() const
+    {
+      return particle_handler;
+    }
+
+    const MaterialLibrary &
+    get_materials() const
+    {
+      return materials;
+    }
+
+    const BackgroundGrid<dim> &
+    get_grid() const
+    {
+      return grid;
+    }
+
+    const TimeSteppingParameters<dim> &
+    get_time_stepping() const
+    {
+      return time_stepping;
+    }
+
+    double
+    get_time() const
+    {
+      return time;
+    }
+
+    unsigned int
+    get_step() const
+    {
+      return step;
+    }
+
+    double
+    get_time_step() const
+    {
+      return time_step;
+    }
+
+    MPI_Comm
+    get_mpi_communicator() const
+    {
+      return mpi_communicator;
+    }
+
+    /**
+     * Sums over all points and ranks.
+     */
+    GlobalStatistics<dim>
+    compute_statistics() const;
+    /** @} */
+
+  private:
+    /**
+     * A cell that holds material points, with what the transfers need of
+     * it: its number of points and the local element indices of its nodal
+     * degrees of freedom, as [vertex][component].
+     */
+    struct ActiveCell
+    {
+      unsigned int                                  n_points;
+      std::array<std::array<unsigned int, dim>,
+                 GeometryInfo<dim>::vertices_per_cell> dofs;
+    };
+
+    void
+    setup();
+
+    void
+    do_time_step();
+
+    double
+    compute_time_step() const;
+
+    void
+    prepare_transfer();
+
+    void
+    zero_nodal_fields();
+
+    void
+    map_mass_and_momentum();
+
+    void
+    map_momentum();
+
+    void
+    compute_nodal_velocity(NodalVector &velocity_out);
+
+    void
+    map_forces();
+
+    void
+    update_nodal_kinematics();
+
+    void
+    update_points_from_grid();
+
+    void
+    update_stress(const NodalVector &nodal_velocity);
+
+    void
+    relocate_points();
+
+    void
+    write_output(const bool force);
+
+    std::vector<std::string>
+    property_names() const;
+
+    MPI_Comm           mpi_communicator;
+    ConditionalOStream pcout;
+    std::string        input_directory;
+    std::string        parameters_text;
+
+    BackgroundGrid<dim>             grid;
+    MaterialLibrary                 materials;
+    PointGenerator<dim>             point_generator;
+    BoundaryConditions<dim>         boundary_conditions;
+    TimeSteppingParameters<dim>     time_stepping;
+    OutputWriter<dim>               output_writer;
+    std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
+    std::vector<std::string>        postprocessor_names;
+    bool                            error_on_lost_points = true;
+
+    Particles::ParticleHandler<dim> particle_handler;
+
+    /// Lumped nodal mass (the same value in each component's entry).
+    NodalVector nodal_mass;
+    NodalVector nodal_momentum;
+    NodalVector nodal_force;
+    /// Constrained nodal velocity at the start of the step.
+    NodalVector nodal_velocity;
+    /// Constrained nodal velocity at the end of the step.
+    NodalVector nodal_velocity_new;
+    NodalVector nodal_acceleration;
+
+    std::vector<ActiveCell>            active_cells;
+    std::vector<Q1ShapeFunctions<dim>> shape_functions;
+    /// Local element indices touched by the points of this step.
+    std::vector<unsigned int>          active_dofs;
+    std::vector<unsigned char>         dof_is_active;
+
+    double       time      = 0;
+    double       time_step = 0;
+    unsigned int step      = 0;
+    double       max_point_speed = 0;
+    unsigned int output_index    = 0;
+
+    /// Points removed because they left the mesh (Points leaving the mesh
+    /// = remove), and their mass.
+    types::particle_index n_lost_points = 0;
+    double                lost_mass     = 0;
+    std::vector<std::string> lost_point_descriptions;
+
+    std::ofstream      statistics_file;
+    mutable TimerOutput timer;
+  };
+} // namespace MPM
+
+#endif

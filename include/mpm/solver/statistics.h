@@ -1,0 +1,34 @@
+#ifndef mpm_solver_statistics_h
+#define mpm_solver_statistics_h
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * Global sums over all material points (and all ranks) at one instant.
+   */
+  template <int dim>
+  struct GlobalStatistics
+  {
+    double                time = 0;
+    double                time_step = 0;
+    unsigned int          step = 0;
+    types::particle_index n_points = 0;
+    double                mass = 0;
+    double                volume = 0;
+    Tensor<1, dim>        momentum;
+    Tensor<1, dim>        mean_velocity;
+    double                kinetic_energy = 0;
+    double                strain_energy  = 0;
+    double                gravitational_potential_energy = 0;
+    double                mean_speed     = 0;
+    double                max_speed      = 0;
+    Tensor<1, dim>        centre_of_mass;
+  };
+} // namespace MPM
+
+#endif

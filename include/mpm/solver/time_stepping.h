@@ -1,0 +1,52 @@
+#ifndef mpm_solver_time_stepping_h
+#define mpm_solver_time_stepping_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * When the stress is updated within an explicit MPM step.
+   */
+  enum class UpdateScheme
+  {
+    /// Update Stress First: strain rate from the nodal velocity mapped from
+    /// the points at the start of the step (the paper's choice).
+    usf,
+    /// Update Stress Last: strain rate from the updated nodal velocity.
+    usl,
+    /// Modified USL: the updated point velocities are mapped back to the
+    /// nodes first and the strain rate computed from those.
+    musl
+  };
+
+  /**
+   * Parameters of the explicit time integration ("Time stepping" in the
+   * parameter file), parsed once into plain members so the solver never
+   * touches the ParameterHandler.
+   */
+  template <int dim>
+  struct TimeSteppingParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    double         end_time = 1;
+    bool           adaptive = true;
+    double         fixed_time_step = 1e-4;
+    double         cfl_number      = 0.5;
+    double         maximum_time_step = 1e100;
+    UpdateScheme   scheme         = UpdateScheme::usf;
+    double         flip_fraction  = 1;
+    double         local_damping  = 0;
+    Tensor<1, dim> gravity;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Shared set-up for run.sh and test.sh: install what is missing (as root),
+# then configure and build one build type in build/<type>.
+# Usage: source scripts/setup.sh; mpm_setup Release|Debug
+set -euo pipefail
+
+MPM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin)
+
+mpm_install_packages() {
+  local missing=()
+  for p in "${MPM_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  if [ "$(id -u)" -eq 0 ]; then
+    echo "Installing missing Debian packages: ${missing[*]}"
+    apt-get update -q
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
+  else
+    echo "Missing Debian packages. Install them with:" >&2
+    echo "  sudo apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+}
+
+# mpm_setup BUILD_TYPE: configure (once) and build build/<build_type lowercase>.
+mpm_setup() {
+  local type="$1"
+  local dir="$MPM_ROOT/build/${type,,}"
+  mpm_install_packages
+  if [ ! -f "$dir/CMakeCache.txt" ]; then
+    cmake -S "$MPM_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type"
+  fi
+  cmake --build "$dir" -j2
+  MPM_BUILD_DIR="$dir"
+}

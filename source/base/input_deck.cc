@@ -1,0 +1,181 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace MPM
+{
+  namespace
+  {
+    /**
+     * The "Additional information" part of a deal.II exception, which is
+     * what tells the user which line and entry of the file was wrong; the
+     * rest (source file and line inside deal.II, stack trace) is noise for
+     * a user of the program.
+     */
+    std::string
+    exception_info(const ExceptionBase &e)
+    {
+      std::ostringstream s;
+      e.print_info(s);
+      std::string text = Utilities::trim(s.str());
+      return text.empty() ? std::string(e.what()) : text;
+    }
+  } // namespace
+
+
+  std::string
+  usage()
+  {
+    return "Usage: mpm [--print-parameters] [input.prm] "
+           "[--set \"Subsection/Entry=value\"]...\n"
+           "  input.prm             parameter file to run\n"
+           "  --set PATH=VALUE      override one parameter after reading the "
+           "file (repeatable)\n"
+           "  --print-parameters    print every parameter with its "
+           "documentation and default\n"
+           "                        (or the values of input.prm if given) "
+           "and exit\n"
+           "  --help                this text\n";
+  }
+
+
+  CommandLine
+  parse_command_line(int argc, char **argv)
+  {
+    CommandLine cl;
+    for (int i = 1; i < argc; ++i)
+      {
+        const std::string arg = argv[i];
+        if (arg == "--print-parameters")
+          cl.print_parameters = true;
+        else if (arg == "--help" || arg == "-h")
+          cl.show_help = true;
+        else if (arg == "--set" || arg.rfind("--set=", 0) == 0)
+          {
+            std::string assignment;
+            if (arg == "--set")
+              {
+                check_input(i + 1 < argc,
+                            "--set needs an argument \"Subsection/Entry=value\".");
+                assignment = argv[++i];
+              }
+            else
+              assignment = arg.substr(6);
+            const auto eq = assignment.find('=');
+            check_input(eq != std::string::npos && eq > 0,
+                        "--set \"" + assignment +
+                          "\": expected \"Subsection/Entry=value\".");
+            cl.overrides.emplace_back(Utilities::trim(assignment.substr(0, eq)),
+                                      Utilities::trim(assignment.substr(eq + 1)));
+          }
+        else if (!arg.empty() && arg[0] == '-')
+          throw InputError("Unknown command line option '" + arg + "'.\n" +
+                           usage());
+        else
+          {
+            check_input(cl.parameter_file.empty(),
+                        "More than one parameter file given ('" +
+                          cl.parameter_file + "' and '" + arg + "').");
+            cl.parameter_file = arg;
+          }
+      }
+    return cl;
+  }
+
+
+  void
+  apply_overrides(
+    ParameterHandler                                       &prm,
+    const std::vector<std::pair<std::string, std::string>> &overrides,
+    const bool                                              ignore_undeclared)
+  {
+    for (const auto &[path, value] : overrides)
+      {
+        // An override is parsed as the small parameter file it stands for,
+        // so that it meets the same checks (declared entry, pattern) as
+        // the file itself.
+        std::vector<std::string> parts =
+          Utilities::split_string_list(path, '/');
+        std::string text;
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          text += "subsection " + Utilities::trim(parts[i]) + "\n";
+        text += "set " + Utilities::trim(parts.back()) + " = " + value + "\n";
+        for (unsigned int i = 0; i + 1 < parts.size(); ++i)
+          text += "end\n";
+        try
+          {
+            prm.parse_input_from_string(text, "", ignore_undeclared);
+          }
+        catch (const ExceptionBase &e)
+          {
+            throw InputError("--set \"" + path + "=" + value +
+                             "\": " + exception_info(e));
+          }
+      }
+  }
+
+
+  std::vector<std::string>
+  split_name_list(const std::string &list, const std::string &parameter_name)
+  {
+    std::vector<std::string> names;
+    std::set<std::string>    seen;
+    for (const auto &n : Utilities::split_string_list(list, ','))
+      {
+        const std::string name = Utilities::trim(n);
+        if (name.empty())
+          continue;
+        check_input(seen.insert(name).second,
+                    "Parameter '" + parameter_name + "' lists '" + name +
+                      "' twice; names must be unique.");
+        names.push_back(name);
+      }
+    return names;
+  }
+
+
+  void
+  parse_parameter_file(ParameterHandler  &prm,
+                       const std::string &file_name,
+                       const bool         skip_undefined)
+  {
+    {
+      std::ifstream in(file_name);
+      check_input(static_cast<bool>(in),
+                  "Cannot open the parameter file '" + file_name + "'.");
+    }
+    try
+      {
+        prm.parse_input(file_name, "", skip_undefined, false);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("In parameter file '" + file_name +
+                         "': " + exception_info(e));
+      }
+  }
+
+
+  std::string
+  directory_of(const std::string &file_name)
+  {
+    const auto slash = file_name.find_last_of('/');
+    return slash == std::string::npos ? std::string() :
+                                        file_name.substr(0, slash + 1);
+  }
+
+
+  std::string
+  resolve_path(const std::string &directory, const std::string &file_name)
+  {
+    if (file_name.empty() || file_name[0] == '/')
+      return file_name;
+    return directory + file_name;
+  }
+} // namespace MPM

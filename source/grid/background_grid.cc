@@ -1,0 +1,206 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/dofs/dof_tools.h>
+
+#include <deal.II/fe/fe_q.h>
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+#include <mpm/grid/background_grid.h>
+
+#include <fstream>
+
+namespace MPM
+{
+  template <int dim>
+  BackgroundGrid<dim>::BackgroundGrid(const MPI_Comm comm)
+    : triangulation(comm)
+    , fe(FE_Q<dim>(1), dim)
+    , dof_handler(triangulation)
+    , mpi_communicator(comm)
+  {}
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh");
+    {
+      prm.declare_entry("Source",
+                        "generator",
+                        Patterns::Selection("gmsh|generator"),
+                        "Where the background mesh comes from: a Gmsh file "
+                        "('gmsh', see 'Gmsh file') or a deal.II GridGenerator "
+                        "function ('generator', see 'Generator name').");
+      prm.declare_entry("Gmsh file",
+                        "",
+                        Patterns::FileName(),
+                        "Gmsh .msh file (format 2.2 or 4.x) of quadrilaterals. "
+                        "Physical tags of boundary lines become boundary ids, "
+                        "physical tags of surfaces material ids. A relative "
+                        "name is read relative to the .prm file.");
+      prm.declare_entry(
+        "Generator name",
+        "subdivided_hyper_rectangle",
+        Patterns::Anything(),
+        "Name of a deal.II GridGenerator function, as accepted by "
+        "GridGenerator::generate_from_name_and_arguments(), e.g. "
+        "'subdivided_hyper_rectangle' or 'hyper_cube'.");
+      prm.declare_entry(
+        "Generator arguments",
+        "{4, 4} : 0, 0 : 1, 1 : true",
+        Patterns::Anything(),
+        "Arguments of the GridGenerator function, separated by ':' (e.g. "
+        "for subdivided_hyper_rectangle: repetitions : lower corner : upper "
+        "corner : colorize). With colorize = true the boundary ids of a "
+        "rectangle are 0 (x = x_min), 1 (x = x_max), 2 (y = y_min), 3 "
+        "(y = y_max).");
+      prm.declare_entry("Global refinements",
+                        "0",
+                        Patterns::Integer(0, 12),
+                        "Number of times every cell is split into 2^dim "
+                        "children after the mesh is read or generated.");
+    }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::parse_parameters(ParameterHandler  &prm,
+                                        const std::string &input_directory)
+  {
+    prm.enter_subsection("Mesh");
+    {
+      source               = prm.get("Source");
+      mesh_file            = resolve_path(input_directory, prm.get("Gmsh file"));
+      generator_name       = prm.get("Generator name");
+      generator_arguments  = prm.get("Generator arguments");
+      n_global_refinements = prm.get_integer("Global refinements");
+    }
+    prm.leave_subsection();
+    if (source == "gmsh")
+      check_input(!mesh_file.empty(),
+                  "Mesh/Source = gmsh, but 'Mesh/Gmsh file' is empty.");
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::create()
+  {
+    if (source == "gmsh")
+      {
+        check_input(static_cast<bool>(std::ifstream(mesh_file)),
+                    "Cannot open the mesh file '" + mesh_file +
+                      "' (parameter 'Mesh/Gmsh file').");
+        GridIn<dim> grid_in;
+        grid_in.attach_triangulation(triangulation);
+        try
+          {
+            std::ifstream in(mesh_file);
+            grid_in.read_msh(in);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream s;
+            e.print_info(s);
+            throw InputError("Cannot read the mesh file '" + mesh_file +
+                             "': " + Utilities::trim(s.str()));
+          }
+      }
+    else if (generator_name == "subdivided_hyper_rectangle")
+      create_subdivided_hyper_rectangle();
+    else
+      {
+        try
+          {
+            GridGenerator::generate_from_name_and_arguments(
+              triangulation, generator_name, generator_arguments);
+          }
+        catch (const ExceptionBase &e)
+          {
+            std::ostringstream s;
+            e.print_info(s);
+            throw InputError("Mesh/Generator name = '" + generator_name +
+                             "' with Mesh/Generator arguments = '" +
+                             generator_arguments +
+                             "' failed: " + Utilities::trim(s.str()));
+          }
+      }
+    triangulation.refine_global(n_global_refinements);
+
+    double h = std::numeric_limits<double>::max();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        h = std::min(h, cell->minimum_vertex_distance());
+    min_cell_size = Utilities::MPI::min(h, mpi_communicator);
+
+    setup_dofs();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::create_subdivided_hyper_rectangle()
+  {
+    // deal.II's string interface picks the overload with step sizes; the
+    // one with repetitions is what users want, so parse it here.
+    const std::string parameter = "Mesh/Generator arguments = '" +
+                                  generator_arguments + "'";
+    const auto parts = Utilities::split_string_list(generator_arguments, ':');
+    check_input(parts.size() == 3 || parts.size() == 4,
+                parameter + ": expected 'repetitions : lower corner : upper "
+                            "corner [: colorize]', e.g. '{4, 2} : 0, 0 : 2, 1 : "
+                            "true'.");
+    auto numbers = [&](std::string text) {
+      text.erase(std::remove(text.begin(), text.end(), '{'), text.end());
+      text.erase(std::remove(text.begin(), text.end(), '}'), text.end());
+      const auto entries = Utilities::split_string_list(text, ',');
+      check_input(entries.size() == dim,
+                  parameter + ": '" + text + "' must have " +
+                    std::to_string(dim) + " entries.");
+      std::vector<double> values;
+      for (const auto &e : entries)
+        values.push_back(Utilities::string_to_double(e));
+      return values;
+    };
+    const auto         n  = numbers(parts[0]);
+    const auto         lo = numbers(parts[1]);
+    const auto         hi = numbers(parts[2]);
+    std::vector<unsigned int> repetitions;
+    Point<dim>         p0, p1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        check_input(n[d] >= 1 && lo[d] < hi[d],
+                    parameter + ": repetitions must be >= 1 and the lower "
+                                "corner below the upper one.");
+        repetitions.push_back(static_cast<unsigned int>(n[d]));
+        p0[d] = lo[d];
+        p1[d] = hi[d];
+      }
+    const bool colorize =
+      parts.size() == 4 && Utilities::trim(parts[3]) == "true";
+    GridGenerator::subdivided_hyper_rectangle(
+      triangulation, repetitions, p0, p1, colorize);
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::setup_dofs()
+  {
+    dof_handler.distribute_dofs(fe);
+    locally_owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+  }
+
+
+  template class BackgroundGrid<2>;
+  template class BackgroundGrid<3>;
+} // namespace MPM

@@ -1,0 +1,97 @@
+/**
+ * The `mpm` executable: reads a parameter file (two passes, so that the
+ * user-named subsections - materials, regions, boundaries - can be
+ * declared), applies command line overrides and runs the simulation.
+ */
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+#include <mpm/solver/simulator.h>
+
+#include <fstream>
+#include <iostream>
+
+namespace
+{
+  using namespace dealii;
+  using namespace MPM;
+
+  template <int dim>
+  int
+  run(const CommandLine &cl, const MPI_Comm comm)
+  {
+    // Pass 1: the lists of names that decide which subsections exist.
+    ParameterHandler names_prm;
+    Simulator<dim>::declare_name_lists(names_prm);
+    if (!cl.parameter_file.empty())
+      parse_parameter_file(names_prm, cl.parameter_file, true);
+    apply_overrides(names_prm, cl.overrides, true);
+    const auto names = Simulator<dim>::read_name_lists(names_prm);
+
+    // Pass 2: everything, strictly.
+    ParameterHandler prm;
+    Simulator<dim>::declare_parameters(prm, names);
+    if (!cl.parameter_file.empty())
+      parse_parameter_file(prm, cl.parameter_file, false);
+    apply_overrides(prm, cl.overrides, false);
+
+    if (cl.print_parameters)
+      {
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          prm.print_parameters(std::cout, ParameterHandler::PRM);
+        return 0;
+      }
+
+    Simulator<dim> simulator(comm);
+    simulator.parse_parameters(prm, directory_of(cl.parameter_file));
+    simulator.run();
+    return 0;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  using namespace MPM;
+  try
+    {
+      Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+      try
+        {
+          const CommandLine cl = parse_command_line(argc, argv);
+          if (cl.show_help ||
+              (cl.parameter_file.empty() && !cl.print_parameters))
+            {
+              std::cout << usage();
+              return cl.show_help ? 0 : 1;
+            }
+
+          ParameterHandler dim_prm;
+          dim_prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "");
+          if (!cl.parameter_file.empty())
+            parse_parameter_file(dim_prm, cl.parameter_file, true);
+          apply_overrides(dim_prm, cl.overrides, true);
+          return dim_prm.get_integer("Dimension") == 2 ?
+                   run<2>(cl, MPI_COMM_WORLD) :
+                   run<3>(cl, MPI_COMM_WORLD);
+        }
+      catch (const InputError &e)
+        {
+          std::cerr << "\nInput error: " << e.what() << "\n\n";
+          return 2;
+        }
+    }
+  catch (const std::exception &e)
+    {
+      std::cerr << "\nError: " << e.what() << "\n\n";
+      return 1;
+    }
+  catch (...)
+    {
+      std::cerr << "\nUnknown error.\n\n";
+      return 1;
+    }
+}

@@ -1,0 +1,453 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/grid_tools_cache.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+#include <mpm/material_points/point_generator.h>
+#include <mpm/material_points/property_layout.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace MPM
+{
+  namespace
+  {
+    template <int dim>
+    Point<dim>
+    parse_point(const std::string &text, const std::string &parameter)
+    {
+      const auto parts = Utilities::split_string_list(text, ',');
+      check_input(parts.size() == dim,
+                  parameter + ": '" + text + "' is not a point with " +
+                    std::to_string(dim) + " comma separated coordinates.");
+      Point<dim> p;
+      for (unsigned int d = 0; d < dim; ++d)
+        p[d] = Utilities::string_to_double(parts[d]);
+      return p;
+    }
+
+    /**
+     * Even-odd rule; points on an edge count as inside for the lower/left
+     * edges only, which is enough because generated points never lie on a
+     * region edge that coincides with a mesh line.
+     */
+    bool
+    inside_polygon(const std::vector<Point<2>> &polygon, const Point<2> &p)
+    {
+      bool inside = false;
+      for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size();
+           j = i++)
+        {
+          const Point<2> &a = polygon[i], &b = polygon[j];
+          if ((a[1] > p[1]) != (b[1] > p[1]) &&
+              p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
+            inside = !inside;
+        }
+      return inside;
+    }
+  } // namespace
+
+
+  template <int dim>
+  bool
+  PointGenerator<dim>::Region::contains(const Point<dim> &p) const
+  {
+    if (type == "box")
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          if (p[d] < box_lower[d] || p[d] > box_upper[d])
+            return false;
+        return true;
+      }
+    if (type == "polygon")
+      return inside_polygon(polygon, Point<2>(p[0], p[1]));
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  PointGenerator<dim>::declare_name_list(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material points");
+    prm.declare_entry("List of regions",
+                      "region",
+                      Patterns::Anything(),
+                      "Comma separated names of the regions filled with "
+                      "material points; each has a subsection of its own.");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  PointGenerator<dim>::read_name_list(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material points");
+    const auto names = split_name_list(prm.get("List of regions"),
+                                       "Material points/List of regions");
+    prm.leave_subsection();
+    return names;
+  }
+
+
+  template <int dim>
+  void
+  PointGenerator<dim>::declare_parameters(ParameterHandler               &prm,
+                                          const std::vector<std::string> &names)
+  {
+    declare_name_list(prm);
+    prm.enter_subsection("Material points");
+    for (const auto &name : names)
+      {
+        prm.enter_subsection(name);
+        prm.declare_entry(
+          "Type",
+          "box",
+          Patterns::Selection("box|polygon|cells|file"),
+          "How the region is given: 'box' (see 'Box'), 'polygon' (2D, see "
+          "'Polygon'), 'cells' (all cells whose material id is 'Cell "
+          "material id'), or 'file' (one point per line, see 'Point file').");
+        prm.declare_entry("Box",
+                          dim == 2 ? "0, 0 : 1, 1" : "0, 0, 0 : 1, 1, 1",
+                          Patterns::Anything(),
+                          "Lower and upper corner of the box, in m, "
+                          "separated by ':'.");
+        prm.declare_entry("Polygon",
+                          "0, 0 ; 1, 0 ; 1, 1 ; 0, 1",
+                          Patterns::Anything(),
+                          "Vertices x, y of the polygon in m, separated by "
+                          "';' (2D only).");
+        prm.declare_entry("Cell material id",
+                          "0",
+                          Patterns::Integer(0, 255),
+                          "Mesh material id of the cells that are filled "
+                          "(Type = cells).");
+        prm.declare_entry("Point file",
+                          "",
+                          Patterns::FileName(),
+                          "Text file with one point per line: the dim "
+                          "coordinates (m) and the volume (m^3, per unit "
+                          "thickness in 2D); '#' starts a comment. A relative "
+                          "name is read relative to the .prm file.");
+        prm.declare_entry("Points per cell",
+                          "2",
+                          Patterns::Integer(1, 20),
+                          "Number of points per cell in each direction "
+                          "(n^dim points per cell).");
+        prm.declare_entry("Material",
+                          "material",
+                          Patterns::Anything(),
+                          "Name of the material (from 'Materials/List of "
+                          "materials') of the points of this region.");
+        prm.declare_entry(
+          "Initial stress",
+          "none",
+          Patterns::Selection("none|geostatic|function"),
+          "'none': zero stress. 'geostatic': sigma_yy = rho g_y (y_s - y) "
+          "with y_s the 'Surface elevation', sigma_xx = sigma_zz = K0 "
+          "sigma_yy (y is the last coordinate). 'function': the six "
+          "components xx; yy; zz; xy; yz; xz of the subsection 'Initial "
+          "stress function', in Pa.");
+        prm.declare_entry("K0",
+                          "-1",
+                          Patterns::Double(),
+                          "Coefficient of earth pressure at rest of the "
+                          "geostatic stress; negative means the material "
+                          "model's default (nu/(1-nu) for linear elasticity).");
+        prm.declare_entry("Surface elevation",
+                          "auto",
+                          Patterns::Anything(),
+                          "Elevation y_s of the free surface for the "
+                          "geostatic stress in m, or 'auto' for the highest "
+                          "point of the region.");
+        prm.enter_subsection("Initial velocity");
+        Functions::ParsedFunction<dim>::declare_parameters(prm, dim);
+        prm.leave_subsection();
+        prm.enter_subsection("Initial stress function");
+        Functions::ParsedFunction<dim>::declare_parameters(prm, 6);
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PointGenerator<dim>::parse_parameters(ParameterHandler      &prm,
+                                        const MaterialLibrary &materials,
+                                        const std::string     &input_directory)
+  {
+    const auto names = read_name_list(prm);
+    prm.enter_subsection("Material points");
+    for (const auto &name : names)
+      {
+        const std::string path = "Material points/" + name + "/";
+        prm.enter_subsection(name);
+        Region r;
+        r.name = name;
+        r.type = prm.get("Type");
+        if (r.type == "box")
+          {
+            const auto corners =
+              Utilities::split_string_list(prm.get("Box"), ':');
+            check_input(corners.size() == 2,
+                        path + "Box = '" + prm.get("Box") +
+                          "': expected 'lower corner : upper corner'.");
+            r.box_lower = parse_point<dim>(corners[0], path + "Box");
+            r.box_upper = parse_point<dim>(corners[1], path + "Box");
+            for (unsigned int d = 0; d < dim; ++d)
+              check_input(r.box_lower[d] < r.box_upper[d],
+                          path + "Box = '" + prm.get("Box") +
+                            "': the lower corner must be below the upper "
+                            "corner in every coordinate.");
+          }
+        else if (r.type == "polygon")
+          {
+            check_input(dim == 2, path + "Type = polygon is 2D only.");
+            for (const auto &v :
+                 Utilities::split_string_list(prm.get("Polygon"), ';'))
+              r.polygon.push_back(parse_point<2>(v, path + "Polygon"));
+            check_input(r.polygon.size() >= 3,
+                        path + "Polygon needs at least three vertices.");
+          }
+        else if (r.type == "cells")
+          r.cell_material_id = prm.get_integer("Cell material id");
+        else
+          {
+            r.file_name = resolve_path(input_directory, prm.get("Point file"));
+            check_input(static_cast<bool>(std::ifstream(r.file_name)),
+                        "Cannot open the point file '" + r.file_name +
+                          "' (parameter '" + path + "Point file').");
+          }
+        r.points_per_cell = prm.get_integer("Points per cell");
+        r.material_index =
+          materials.index_of(prm.get("Material"), path + "Material");
+        r.initial_stress = prm.get("Initial stress");
+        r.k0             = prm.get_double("K0");
+        const std::string surface = prm.get("Surface elevation");
+        r.automatic_surface       = (surface == "auto");
+        if (!r.automatic_surface)
+          {
+            try
+              {
+                r.surface_elevation = Utilities::string_to_double(surface);
+              }
+            catch (...)
+              {
+                throw InputError(path + "Surface elevation = '" + surface +
+                                 "': expected a number (m) or 'auto'.");
+              }
+          }
+        prm.enter_subsection("Initial velocity");
+        r.initial_velocity = std::make_shared<Functions::ParsedFunction<dim>>(dim);
+        r.initial_velocity->parse_parameters(prm);
+        prm.leave_subsection();
+        prm.enter_subsection("Initial stress function");
+        r.initial_stress_function =
+          std::make_shared<Functions::ParsedFunction<dim>>(6);
+        r.initial_stress_function->parse_parameters(prm);
+        prm.leave_subsection();
+        prm.leave_subsection();
+        regions.push_back(r);
+      }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::vector<typename PointGenerator<dim>::NewPoint>
+  PointGenerator<dim>::points_of_region(const Region              &region,
+                                        const BackgroundGrid<dim> &grid) const
+  {
+    std::vector<NewPoint> points;
+    if (region.type == "file")
+      {
+        // Every rank reads the file and keeps the points in its own cells.
+        GridTools::Cache<dim> cache(grid.triangulation, grid.mapping);
+        std::ifstream         in(region.file_name);
+        std::string           line;
+        unsigned int          line_number = 0;
+        bool                  missing     = false;
+        std::string           missing_point;
+        while (std::getline(in, line))
+          {
+            ++line_number;
+            line = Utilities::trim(line.substr(0, line.find('#')));
+            if (line.empty())
+              continue;
+            std::istringstream s(line);
+            Point<dim>         p;
+            double             volume = 0;
+            for (unsigned int d = 0; d < dim; ++d)
+              s >> p[d];
+            s >> volume;
+            check_input(!s.fail() && volume > 0,
+                        region.file_name + ", line " +
+                          std::to_string(line_number) + ": expected " +
+                          std::to_string(dim) +
+                          " coordinates and a positive volume.");
+            const auto found = GridTools::find_active_cell_around_point(
+              cache, p, typename Triangulation<dim>::active_cell_iterator(), {}, 1e-10);
+            if (found.first.state() != IteratorState::valid)
+              {
+                missing = true;
+                missing_point =
+                  region.file_name + ", line " + std::to_string(line_number);
+                break;
+              }
+            if (found.first->is_locally_owned())
+              points.push_back({p, found.second, found.first, volume});
+          }
+        check_input(!missing,
+                    "Material point at " + missing_point +
+                      " lies outside the mesh.");
+        return points;
+      }
+
+    const QIterated<dim> sub_cell_centres(QMidpoint<1>(),
+                                          region.points_per_cell);
+    FEValues<dim> fe_values(grid.mapping,
+                            grid.fe,
+                            sub_cell_centres,
+                            update_quadrature_points | update_JxW_values);
+
+    BoundingBox<dim> region_box;
+    if (region.type == "box")
+      region_box = BoundingBox<dim>({region.box_lower, region.box_upper});
+    else if (region.type == "polygon")
+      {
+        Point<dim> lo, hi;
+        for (unsigned int d = 0; d < 2; ++d)
+          {
+            lo[d] = hi[d] = region.polygon[0][d];
+            for (const auto &v : region.polygon)
+              {
+                lo[d] = std::min(lo[d], v[d]);
+                hi[d] = std::max(hi[d], v[d]);
+              }
+          }
+        region_box = BoundingBox<dim>({lo, hi});
+      }
+
+    for (const auto &cell : grid.triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        if (region.type == "cells")
+          {
+            if (cell->material_id() != region.cell_material_id)
+              continue;
+          }
+        else if (region_box.get_neighbor_type(cell->bounding_box()) ==
+                 NeighborType::not_neighbors)
+          continue;
+
+        fe_values.reinit(cell);
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const Point<dim> &x = fe_values.quadrature_point(q);
+            if (region.contains(x))
+              points.push_back({x,
+                                sub_cell_centres.point(q),
+                                cell,
+                                fe_values.JxW(q)});
+          }
+      }
+    return points;
+  }
+
+
+  template <int dim>
+  void
+  PointGenerator<dim>::generate(
+    const BackgroundGrid<dim>       &grid,
+    const MaterialLibrary           &materials,
+    const Tensor<1, dim>            &gravity,
+    Particles::ParticleHandler<dim> &particle_handler) const
+  {
+    using Layout              = PropertyLayout<dim>;
+    const MPI_Comm comm       = grid.triangulation.get_communicator();
+    const unsigned n_props    = particle_handler.n_properties_per_particle();
+    types::particle_index next_id = 0;
+
+    for (const auto &region : regions)
+      {
+        const auto points = points_of_region(region, grid);
+        // Ids of this rank's points start after those of lower ranks.
+        unsigned long long n_local = points.size(), first_id = 0;
+        MPI_Exscan(&n_local, &first_id, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          first_id = 0;
+        const unsigned long long n_total = Utilities::MPI::sum(n_local, comm);
+        check_input(n_total > 0,
+                    "Material points/" + region.name +
+                      " holds no material point: the region lies outside "
+                      "the mesh or is smaller than a sub-cell.");
+
+        double surface = region.surface_elevation;
+        if (region.automatic_surface)
+          {
+            double y_max = -std::numeric_limits<double>::max();
+            for (const auto &p : points)
+              y_max = std::max(y_max, p.location[dim - 1]);
+            surface = Utilities::MPI::max(y_max, comm);
+          }
+
+        const Material &material = materials[region.material_index];
+        const double    k0 =
+          region.k0 >= 0 ? region.k0 : material.model->default_k0();
+
+        std::vector<double> properties(n_props, 0.);
+        types::particle_index id = next_id + first_id;
+        for (const auto &p : points)
+          {
+            std::fill(properties.begin(), properties.end(), 0.);
+            properties[Layout::mass]   = material.density * p.volume;
+            properties[Layout::volume] = p.volume;
+            for (unsigned int d = 0; d < dim; ++d)
+              properties[Layout::velocity + d] =
+                region.initial_velocity->value(p.location, d);
+
+            SymmetricTensor<2, 3> stress;
+            if (region.initial_stress == "geostatic")
+              {
+                const double s_v = material.density * gravity[dim - 1] *
+                                   (surface - p.location[dim - 1]);
+                for (unsigned int d = 0; d < 3; ++d)
+                  stress[d][d] = (d == dim - 1) ? s_v : k0 * s_v;
+              }
+            else if (region.initial_stress == "function")
+              for (unsigned int k = 0; k < 6; ++k)
+                stress[voigt_index[k][0]][voigt_index[k][1]] =
+                  region.initial_stress_function->value(p.location, k);
+            write_symmetric_tensor(stress, &properties[Layout::stress]);
+
+            properties[Layout::material_id] = region.material_index;
+            material.model->initialize_state(
+              ArrayView<double>(properties.data() + Layout::state,
+                                n_props - Layout::state));
+
+            particle_handler.insert_particle(p.location,
+                                             p.reference_location,
+                                             id++,
+                                             p.cell,
+                                             ArrayView<const double>(
+                                               properties));
+          }
+        next_id += n_total;
+      }
+    particle_handler.update_cached_numbers();
+  }
+
+
+  template class PointGenerator<2>;
+  template class PointGenerator<3>;
+} // namespace MPM

@@ -1,0 +1,170 @@
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/numerics/data_out.h>
+
+#include <deal.II/particles/data_out.h>
+
+#include <mpm/base/input_error.h>
+#include <mpm/output/output_writer.h>
+
+#include <filesystem>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  OutputWriter<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    {
+      prm.declare_entry("Directory",
+                        "output",
+                        Patterns::DirectoryName(),
+                        "Directory for all output (created if missing), "
+                        "relative to where mpm is started.");
+      prm.declare_entry("Output interval",
+                        "0.1",
+                        Patterns::Double(0),
+                        "Simulated time between two outputs (particle files "
+                        "and a line of the statistics file), in s; 0 means "
+                        "every step.");
+      prm.declare_entry("Write particles",
+                        "true",
+                        Patterns::Bool(),
+                        "Write the material points (VTU/PVD) at output "
+                        "times.");
+      prm.declare_entry("Write mesh",
+                        "true",
+                        Patterns::Bool(),
+                        "Write the background mesh once (mesh.pvtu).");
+      prm.declare_entry("Progress interval",
+                        "10",
+                        Patterns::Double(0),
+                        "Wall-clock seconds between two progress lines on "
+                        "the screen.");
+    }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    {
+      output_directory     = prm.get("Directory");
+      output_interval      = prm.get_double("Output interval");
+      write_particle_files = prm.get_bool("Write particles");
+      write_mesh_file      = prm.get_bool("Write mesh");
+      progress_seconds     = prm.get_double("Progress interval");
+    }
+    prm.leave_subsection();
+    if (output_directory.empty())
+      output_directory = ".";
+    if (output_directory.back() != '/')
+      output_directory += '/';
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::initialize(const MPI_Comm comm) const
+  {
+    bool ok = true;
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::error_code ec;
+        std::filesystem::create_directories(output_directory, ec);
+        ok = std::filesystem::is_directory(output_directory);
+      }
+    ok = Utilities::MPI::broadcast(comm, ok, 0);
+    check_input(ok,
+                "Cannot create the output directory '" + output_directory +
+                  "' (parameter 'Output/Directory').");
+  }
+
+
+  template <int dim>
+  bool
+  OutputWriter<dim>::output_due(const double time,
+                                const double dt,
+                                const double end_time) const
+  {
+    (void)dt;
+    return time >= end_time * (1 - 1e-12) ||
+           time >= last_output_time + output_interval * (1 - 1e-9);
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::mark_written(const double time)
+  {
+    last_output_time = time;
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_mesh(const BackgroundGrid<dim> &grid) const
+  {
+    if (!write_mesh_file)
+      return;
+    DataOut<dim> data_out;
+    data_out.attach_triangulation(grid.triangulation);
+    Vector<float> material_id(grid.triangulation.n_active_cells());
+    Vector<float> subdomain(grid.triangulation.n_active_cells());
+    for (const auto &cell : grid.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          material_id[cell->active_cell_index()] = cell->material_id();
+          subdomain[cell->active_cell_index()]   = cell->subdomain_id();
+        }
+    data_out.add_data_vector(material_id, "material_id");
+    data_out.add_data_vector(subdomain, "subdomain");
+    data_out.build_patches(grid.mapping);
+    data_out.write_vtu_with_pvtu_record(
+      output_directory, "mesh", 0, grid.triangulation.get_communicator(), 0);
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_particles(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const std::vector<std::string>        &property_names,
+    const double                           time,
+    const unsigned int                     output_index,
+    const MPI_Comm                         comm)
+  {
+    if (!write_particle_files)
+      return;
+    std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      interpretation(property_names.size(),
+                     DataComponentInterpretation::component_is_scalar);
+    for (unsigned int i = 0; i < property_names.size(); ++i)
+      if (property_names[i] == "velocity")
+        interpretation[i] = DataComponentInterpretation::component_is_part_of_vector;
+
+    Particles::DataOut<dim> data_out;
+    data_out.build_patches(particle_handler, property_names, interpretation);
+    const std::string file = data_out.write_vtu_with_pvtu_record(
+      output_directory,
+      "particles",
+      output_index,
+      comm,
+      5);
+    pvd_records.emplace_back(time, file);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      {
+        std::ofstream pvd(output_directory + "particles.pvd");
+        DataOutBase::write_pvd_record(pvd, pvd_records);
+      }
+  }
+
+
+  template class OutputWriter<2>;
+  template class OutputWriter<3>;
+} // namespace MPM

@@ -1,0 +1,327 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/base/input_error.h>
+#include <mpm/material_points/property_layout.h>
+#include <mpm/postprocess/postprocessor.h>
+#include <mpm/solver/simulator.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace MPM
+{
+  namespace Postprocessors
+  {
+    /**
+     * The 1D-like vibrating elastic bar (Bardenhagen 2002): a bar of length
+     * L along x, fixed at x = 0, free at x = L, started with the first mode's
+     * velocity v0 sin(beta x), beta = pi / (2 L). Its centre-of-mass
+     * velocity is v_cm(t) = (2 v0 / pi) cos(omega t) with omega = beta
+     * sqrt(E / rho). Reports v_cm against that at output times, the largest
+     * deviation relative to 2 v0 / pi, and the period measured from the
+     * zero crossings of v_cm against 2 pi / omega. The wave speed is that
+     * of the first material, which must have nu = 0.
+     */
+    template <int dim>
+    class VibratingBar : public Postprocessor<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Bar length", "25", Patterns::Double(0), "L in m.");
+        prm.declare_entry("Velocity amplitude",
+                          "0.1",
+                          Patterns::Double(0),
+                          "v0 in m/s.");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm) override
+      {
+        length = prm.get_double("Bar length");
+        v0     = prm.get_double("Velocity amplitude");
+      }
+
+      void
+      initialize(const Simulator<dim> &simulator) override
+      {
+        // With nu = 0 the P-wave speed sqrt((lambda + 2 mu) / rho) is the
+        // bar speed sqrt(E / rho).
+        omega     = M_PI / (2 * length) * simulator.get_materials()[0].wave_speed();
+        amplitude        = 2 * v0 / M_PI;
+      }
+
+      void
+      execute(const Simulator<dim> &simulator, const bool output_step) override
+      {
+        const auto   s     = simulator.compute_statistics();
+        const double v     = s.mean_velocity[0];
+        const double exact = amplitude * std::cos(omega * s.time);
+        max_error = std::max(max_error, std::abs(v - exact) / amplitude);
+        if (last_time >= 0 && (last_v > 0) != (v > 0))
+          crossings.push_back(last_time +
+                              (s.time - last_time) * last_v / (last_v - v));
+        last_time = s.time;
+        last_v    = v;
+        if (output_step)
+          table << std::setw(12) << s.time << std::setw(14) << v
+                << std::setw(14) << exact << std::setw(14)
+                << (v - exact) / amplitude << '\n';
+      }
+
+      void
+      write_report(const Simulator<dim> &, std::ostream &report) override
+      {
+        const double period = 2 * M_PI / omega;
+        report << "## vibrating bar: centre-of-mass velocity against "
+                  "(2 v0/pi) cos(omega t)\n"
+               << "# time (s)   v_cm mpm (m/s)  v_cm exact (m/s)  error / "
+                  "(2 v0/pi)\n"
+               << table.str();
+        report << "max |v_cm error| / (2 v0/pi): " << max_error << '\n';
+        if (crossings.size() >= 2)
+          {
+            const double measured = 2 * (crossings[1] - crossings[0]);
+            report << "period mpm (s): " << measured
+                   << "\nperiod exact (s): " << period
+                   << "\nperiod relative error: "
+                   << (measured - period) / period << '\n';
+          }
+        else
+          report << "period: fewer than two zero crossings of v_cm\n";
+      }
+
+    private:
+      double              length = 25, v0 = 0.1;
+      double              omega = 1, amplitude = 1;
+      double              max_error = 0, last_time = -1, last_v = 0;
+      std::vector<double> crossings;
+      std::ostringstream  table;
+    };
+
+
+    /**
+     * An elastic column of height H on a base at y = y_b, loaded by its own
+     * weight and settled (with local damping): compares sigma_yy of the
+     * points with rho g (H - (y - y_b)) (compression negative) at the end
+     * of the run, over the points of the base layer (y - y_b < base layer
+     * thickness) and over the whole column (relative L2 error).
+     */
+    template <int dim>
+    class SelfWeightColumn : public Postprocessor<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Column height", "1", Patterns::Double(0), "H in m.");
+        prm.declare_entry("Base elevation", "0", Patterns::Double(), "y_b in m.");
+        prm.declare_entry("Base layer thickness",
+                          "0.1",
+                          Patterns::Double(0),
+                          "Points below y_b + this (m) form the base layer.");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm) override
+      {
+        height     = prm.get_double("Column height");
+        base       = prm.get_double("Base elevation");
+        base_layer = prm.get_double("Base layer thickness");
+      }
+
+      void
+      execute(const Simulator<dim> &, const bool) override
+      {}
+
+      void
+      write_report(const Simulator<dim> &simulator, std::ostream &report) override
+      {
+        using Layout   = PropertyLayout<dim>;
+        const double g = simulator.get_time_stepping().gravity[dim - 1];
+        // Volume-weighted sums per horizontal layer of thickness
+        // base_layer: [volume, sigma_yy, exact], and the L2 sums.
+        const unsigned int  n_layers = std::ceil(height / base_layer - 1e-9);
+        std::vector<double> sums(3 * n_layers + 2, 0.);
+        double              rho_ref = 0;
+        for (const auto &point : simulator.get_particle_handler())
+          {
+            const auto   props = point.get_properties();
+            const double y     = point.get_location()[dim - 1] - base;
+            const double rho =
+              simulator.get_materials()
+                [static_cast<unsigned int>(props[Layout::material_id])]
+                  .density;
+            rho_ref             = rho;
+            const double exact  = rho * g * (height - y);
+            const double sigma  = props[Layout::stress + dim - 1];
+            const double volume = props[Layout::volume];
+            sums[0] += volume * (sigma - exact) * (sigma - exact);
+            sums[1] += volume * exact * exact;
+            const unsigned int layer = std::min<unsigned int>(
+              n_layers - 1, std::max(0., y / base_layer));
+            sums[2 + 3 * layer] += volume;
+            sums[3 + 3 * layer] += volume * sigma;
+            sums[4 + 3 * layer] += volume * exact;
+          }
+        const MPI_Comm comm = simulator.get_mpi_communicator();
+        Utilities::MPI::sum(sums, comm, sums);
+        rho_ref             = Utilities::MPI::max(rho_ref, comm);
+        const double scale  = std::abs(rho_ref * g * height);
+        report << "## self-weight column: sigma_yy against rho g (H - y), "
+                  "averaged over layers of "
+               << base_layer << " m\n"
+               << "# layer  mean sigma_yy mpm (Pa)  mean exact (Pa)  error / "
+                  "(rho g H)\n";
+        for (unsigned int l = 0; l < n_layers; ++l)
+          {
+            const double v = sums[2 + 3 * l];
+            if (v == 0)
+              continue;
+            const double mean = sums[3 + 3 * l] / v, mean_e = sums[4 + 3 * l] / v;
+            report << std::setw(5) << l << std::setw(16) << mean
+                   << std::setw(16) << mean_e << std::setw(16)
+                   << (mean - mean_e) / scale << '\n';
+          }
+        const double base_mean   = sums[3] / sums[2];
+        const double base_exact  = sums[4] / sums[2];
+        report << "base layer relative error |mpm - exact| / (rho g H): "
+               << std::abs(base_mean - base_exact) / scale
+               << "\nwhole column relative L2 error: "
+               << std::sqrt(sums[0] / sums[1]) << '\n';
+      }
+
+    private:
+      double height = 1, base = 0, base_layer = 0.1;
+    };
+
+
+    /**
+     * Conservation of mass and momentum: mass must stay exactly constant
+     * and the momentum change must equal the impulse of gravity, M g t (no
+     * boundary forces act on a free-falling body). Reports both errors at
+     * output times and their maxima over the run, and the relative change
+     * of total energy (kinetic + strain + gravitational).
+     */
+    template <int dim>
+    class Conservation : public Postprocessor<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &)
+      {}
+
+      void
+      initialize(const Simulator<dim> &simulator) override
+      {
+        const auto s = simulator.compute_statistics();
+        mass0        = s.mass;
+        momentum0    = s.momentum;
+        energy0 =
+          s.kinetic_energy + s.strain_energy + s.gravitational_potential_energy;
+        time0 = s.time;
+      }
+
+      void
+      execute(const Simulator<dim> &simulator, const bool output_step) override
+      {
+        const auto     s = simulator.compute_statistics();
+        const auto     g = simulator.get_time_stepping().gravity;
+        const double   t = s.time - time0;
+        const Tensor<1, dim> expected = momentum0 + mass0 * g * t;
+        const double mass_error = std::abs(s.mass - mass0) / mass0;
+        const double momentum_error =
+          (s.momentum - expected).norm() / std::max(1e-300, mass0 * g.norm() * t);
+        const double energy = s.kinetic_energy + s.strain_energy +
+                              s.gravitational_potential_energy;
+        const double energy_scale = std::max(std::abs(energy0), mass0 * g.norm() * g.norm() * t * t / 2);
+        const double energy_change = (energy - energy0) / energy_scale;
+        max_mass_error     = std::max(max_mass_error, mass_error);
+        max_momentum_error = std::max(max_momentum_error, momentum_error);
+        max_energy_change  = std::max(max_energy_change, std::abs(energy_change));
+        if (output_step)
+          table << std::setw(12) << s.time << std::setw(14) << mass_error
+                << std::setw(14) << momentum_error << std::setw(14)
+                << energy_change << '\n';
+      }
+
+      void
+      write_report(const Simulator<dim> &, std::ostream &report) override
+      {
+        report << "## conservation: mass and momentum against M0 and p0 + M0 "
+                  "g t\n"
+               << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t)  "
+                  "energy change / max(|E0|, M0 g^2 t^2 / 2)\n"
+               << table.str() << "max mass error: " << max_mass_error
+               << "\nmax momentum error: " << max_momentum_error
+               << "\nmax energy change: " << max_energy_change << '\n';
+      }
+
+    private:
+      double             mass0 = 0, energy0 = 0, time0 = 0;
+      Tensor<1, dim>     momentum0;
+      double             max_mass_error = 0, max_momentum_error = 0,
+                         max_energy_change = 0;
+      std::ostringstream table;
+    };
+
+
+    std::string
+    names()
+    {
+      return "vibrating bar|self-weight column|conservation";
+    }
+
+
+    template <int dim>
+    void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Postprocess");
+      prm.enter_subsection("vibrating bar");
+      VibratingBar<dim>::declare_parameters(prm);
+      prm.leave_subsection();
+      prm.enter_subsection("self-weight column");
+      SelfWeightColumn<dim>::declare_parameters(prm);
+      prm.leave_subsection();
+      prm.enter_subsection("conservation");
+      Conservation<dim>::declare_parameters(prm);
+      prm.leave_subsection();
+      prm.leave_subsection();
+    }
+
+
+    template <int dim>
+    std::unique_ptr<Postprocessor<dim>>
+    create(const std::string &name, ParameterHandler &prm)
+    {
+      std::unique_ptr<Postprocessor<dim>> p;
+      if (name == "vibrating bar")
+        p = std::make_unique<VibratingBar<dim>>();
+      else if (name == "self-weight column")
+        p = std::make_unique<SelfWeightColumn<dim>>();
+      else if (name == "conservation")
+        p = std::make_unique<Conservation<dim>>();
+      else
+        throw InputError("Unknown postprocessor '" + name + "'.");
+      prm.enter_subsection("Postprocess");
+      prm.enter_subsection(name);
+      p->parse_parameters(prm);
+      prm.leave_subsection();
+      prm.leave_subsection();
+      return p;
+    }
+
+
+    template void
+    declare_parameters<2>(ParameterHandler &);
+    template void
+    declare_parameters<3>(ParameterHandler &);
+    template std::unique_ptr<Postprocessor<2>>
+    create<2>(const std::string &, ParameterHandler &);
+    template std::unique_ptr<Postprocessor<3>>
+    create<3>(const std::string &, ParameterHandler &);
+  } // namespace Postprocessors
+} // namespace MPM

@@ -1,0 +1,752 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+#include <mpm/material_points/property_layout.h>
+#include <mpm/solver/simulator.h>
+
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  Simulator<dim>::declare_name_lists(ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Spatial dimension of the scene.");
+    MaterialLibrary::declare_name_list(prm);
+    PointGenerator<dim>::declare_name_list(prm);
+    BoundaryConditions<dim>::declare_name_list(prm);
+  }
+
+
+  template <int dim>
+  typename Simulator<dim>::NameLists
+  Simulator<dim>::read_name_lists(ParameterHandler &prm)
+  {
+    NameLists names;
+    names.materials  = MaterialLibrary::read_name_list(prm);
+    names.regions    = PointGenerator<dim>::read_name_list(prm);
+    names.boundaries = BoundaryConditions<dim>::read_name_list(prm);
+    return names;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::declare_parameters(ParameterHandler &prm,
+                                     const NameLists  &names)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(2, 3),
+                      "Spatial dimension of the scene.");
+    BackgroundGrid<dim>::declare_parameters(prm);
+    MaterialLibrary::declare_parameters(prm, names.materials);
+    PointGenerator<dim>::declare_parameters(prm, names.regions);
+    prm.enter_subsection("Material points");
+    prm.declare_entry("Points leaving the mesh",
+                      "error",
+                      Patterns::Selection("error|remove"),
+                      "What happens to a material point that leaves the "
+                      "mesh: 'error' stops the run naming the point; "
+                      "'remove' removes it, and the number of removed points "
+                      "and their mass are reported in the statistics file "
+                      "and at the end of the run.");
+    prm.leave_subsection();
+    BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
+    TimeSteppingParameters<dim>::declare_parameters(prm);
+    OutputWriter<dim>::declare_parameters(prm);
+    prm.enter_subsection("Postprocess");
+    prm.declare_entry("List of postprocessors",
+                      "",
+                      Patterns::MultipleSelection(Postprocessors::names()),
+                      "Comparisons with references that are run during the "
+                      "simulation and written to report.txt in the output "
+                      "directory.");
+    prm.leave_subsection();
+    Postprocessors::declare_parameters<dim>(prm);
+  }
+
+
+  template <int dim>
+  Simulator<dim>::Simulator(const MPI_Comm comm)
+    : mpi_communicator(comm)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
+    , grid(comm)
+    // Rank 0's own timings: with MPI_COMM_SELF the timer does not try to
+    // synchronise in its destructor when an input error unwinds the stack.
+    , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
+  {}
+
+
+  template <int dim>
+  void
+  Simulator<dim>::parse_parameters(ParameterHandler  &prm,
+                                   const std::string &input_dir)
+  {
+    input_directory = input_dir;
+    std::ostringstream all_parameters;
+    prm.print_parameters(all_parameters, ParameterHandler::ShortPRM);
+    parameters_text = all_parameters.str();
+    grid.parse_parameters(prm, input_directory);
+    materials.parse_parameters(prm);
+    point_generator.parse_parameters(prm, materials, input_directory);
+    prm.enter_subsection("Material points");
+    error_on_lost_points = prm.get("Points leaving the mesh") == "error";
+    prm.leave_subsection();
+    boundary_conditions.parse_parameters(prm);
+    time_stepping.parse_parameters(prm);
+    output_writer.parse_parameters(prm);
+    prm.enter_subsection("Postprocess");
+    postprocessor_names = split_name_list(prm.get("List of postprocessors"),
+                                          "Postprocess/List of postprocessors");
+    prm.leave_subsection();
+    for (const auto &name : postprocessor_names)
+      postprocessors.push_back(Postprocessors::create<dim>(name, prm));
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  Simulator<dim>::property_names() const
+  {
+    auto names = PropertyLayout<dim>::fixed_names();
+    // The state slots: named by the model if there is one material,
+    // generically otherwise.
+    const unsigned int n_state = materials.max_n_state_variables();
+    const auto model_names = materials[0].model->state_variable_names();
+    for (unsigned int i = 0; i < n_state; ++i)
+      names.push_back(materials.size() == 1 && i < model_names.size() ?
+                        model_names[i] :
+                        "state_" + std::to_string(i));
+    return names;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::setup()
+  {
+    TimerOutput::Scope t(timer, "setup");
+    output_writer.initialize(mpi_communicator);
+    grid.create();
+    boundary_conditions.check_boundary_ids(grid);
+
+    const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
+    for (NodalVector *v : {&nodal_mass,
+                           &nodal_momentum,
+                           &nodal_force,
+                           &nodal_velocity,
+                           &nodal_velocity_new,
+                           &nodal_acceleration})
+      v->reinit(partitioner);
+    dof_is_active.assign(nodal_mass.locally_owned_size() +
+                           partitioner->n_ghost_indices(),
+                         0);
+    boundary_conditions.setup(grid, nodal_mass);
+
+    particle_handler.initialize(grid.triangulation,
+                                grid.mapping,
+                                PropertyLayout<dim>::state +
+                                  materials.max_n_state_variables());
+    particle_handler.signals.particle_lost.connect(
+      [this](const typename Particles::ParticleIterator<dim> &particle,
+             const typename Triangulation<dim>::active_cell_iterator &) {
+        const double mass =
+          particle->get_properties()[PropertyLayout<dim>::mass];
+        ++n_lost_points;
+        lost_mass += mass;
+        std::ostringstream s;
+        s << "material point " << particle->get_id() << " (mass " << mass
+          << " kg) left the mesh at (" << particle->get_location() << ")";
+        lost_point_descriptions.push_back(s.str());
+      });
+    point_generator.generate(grid,
+                             materials,
+                             time_stepping.gravity,
+                             particle_handler);
+
+    const auto stats = compute_statistics();
+    max_point_speed  = stats.max_speed;
+    pcout << "dealii-mpm: " << dim << "D, "
+          << grid.triangulation.n_global_active_cells() << " cells, "
+          << stats.n_points << " material points, mass " << stats.mass
+          << " kg, " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " MPI rank(s)\n";
+
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        // Every run keeps the parameters it ran with beside its results.
+        std::ofstream(output_writer.directory() + "parameters.prm")
+          << parameters_text;
+        statistics_file.open(output_writer.directory() + "statistics");
+        statistics_file
+          << "# Columns: 1 time (s), 2 step, 3 time step (s), 4 points, 5 "
+             "mass (kg), "
+          << 6 << "-" << 5 + dim << " momentum (kg m/s), " << 6 + dim
+          << " kinetic energy (J), " << 7 + dim << " strain energy (J), "
+          << 8 + dim << " gravitational potential energy (J), " << 9 + dim
+          << " mean speed (m/s), " << 10 + dim << "-" << 9 + 2 * dim
+          << " centre of mass (m), " << 10 + 2 * dim
+          << " removed points, " << 11 + 2 * dim
+          << " removed mass (kg). Energies per unit thickness in 2D.\n";
+      }
+  }
+
+
+  template <int dim>
+  double
+  Simulator<dim>::compute_time_step() const
+  {
+    double dt = time_stepping.fixed_time_step;
+    if (time_stepping.adaptive)
+      dt = std::min(time_stepping.maximum_time_step,
+                    time_stepping.cfl_number * grid.minimum_cell_size() /
+                      (materials.max_wave_speed() + max_point_speed));
+    // Land on the end time exactly rather than overshoot it.
+    if (time + dt > time_stepping.end_time * (1 - 1e-12))
+      dt = time_stepping.end_time - time;
+    return dt;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::prepare_transfer()
+  {
+    TimerOutput::Scope t(timer, "shape functions");
+    using CellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    const auto &partitioner = *nodal_mass.get_partitioner();
+
+    active_cells.clear();
+    shape_functions.resize(particle_handler.n_locally_owned_particles());
+    active_dofs.clear();
+
+    std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
+    std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
+    unsigned int                         k = 0;
+    for (auto it = particle_handler.begin(); it != particle_handler.end();)
+      {
+        const typename Triangulation<dim>::active_cell_iterator tria_cell =
+          it->get_surrounding_cell();
+        const auto   points    = particle_handler.particles_in_cell(tria_cell);
+        const CellIterator cell(&grid.triangulation,
+                                tria_cell->level(),
+                                tria_cell->index(),
+                                &grid.dof_handler);
+        cell->get_dof_indices(cell_dofs);
+
+        ActiveCell active{static_cast<unsigned int>(
+                            particle_handler.n_particles_in_cell(tria_cell)),
+                          {}};
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            vertices[v] = cell->vertex(v);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const unsigned int local = partitioner.global_to_local(
+                  cell_dofs[grid.fe.component_to_system_index(c, v)]);
+                active.dofs[v][c] = local;
+                if (!dof_is_active[local])
+                  {
+                    dof_is_active[local] = 1;
+                    active_dofs.push_back(local);
+                  }
+              }
+          }
+        active_cells.push_back(active);
+
+        for (const auto &point : points)
+          shape_functions[k++].reinit(vertices, point.get_reference_location());
+        it = points.end();
+      }
+    for (const unsigned int i : active_dofs)
+      dof_is_active[i] = 0;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::zero_nodal_fields()
+  {
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
+      {
+        // Only the entries the previous step touched are non-zero: clearing
+        // them keeps the cost independent of the size of the empty mesh.
+        for (NodalVector *v : {&nodal_mass,
+                               &nodal_momentum,
+                               &nodal_force,
+                               &nodal_velocity,
+                               &nodal_velocity_new,
+                               &nodal_acceleration})
+          {
+            for (const unsigned int i : active_dofs)
+              v->local_element(i) = 0;
+            v->zero_out_ghost_values();
+          }
+      }
+    else
+      for (NodalVector *v : {&nodal_mass,
+                             &nodal_momentum,
+                             &nodal_force,
+                             &nodal_velocity,
+                             &nodal_velocity_new,
+                             &nodal_acceleration})
+        {
+          v->zero_out_ghost_values();
+          *v = 0;
+        }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_mass_and_momentum()
+  {
+    TimerOutput::Scope t(timer, "particle to grid");
+    using Layout       = PropertyLayout<dim>;
+    auto         point = particle_handler.begin();
+    unsigned int k     = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+        {
+          const auto   props = point->get_properties();
+          const double m     = props[Layout::mass];
+          const auto  &N     = shape_functions[k].value;
+          for (unsigned int i = 0; i < N.size(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                nodal_mass.local_element(cell.dofs[i][c]) += N[i] * m;
+                nodal_momentum.local_element(cell.dofs[i][c]) +=
+                  N[i] * m * props[Layout::velocity + c];
+              }
+        }
+    nodal_mass.compress(VectorOperation::add);
+    nodal_momentum.compress(VectorOperation::add);
+    nodal_mass.update_ghost_values();
+    nodal_momentum.update_ghost_values();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_momentum()
+  {
+    TimerOutput::Scope t(timer, "particle to grid");
+    using Layout = PropertyLayout<dim>;
+    nodal_momentum.zero_out_ghost_values();
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
+      for (const unsigned int i : active_dofs)
+        nodal_momentum.local_element(i) = 0;
+    else
+      nodal_momentum = 0;
+    auto         point = particle_handler.begin();
+    unsigned int k     = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+        {
+          const auto   props = point->get_properties();
+          const double m     = props[Layout::mass];
+          const auto  &N     = shape_functions[k].value;
+          for (unsigned int i = 0; i < N.size(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              nodal_momentum.local_element(cell.dofs[i][c]) +=
+                N[i] * m * props[Layout::velocity + c];
+        }
+    nodal_momentum.compress(VectorOperation::add);
+    nodal_momentum.update_ghost_values();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::compute_nodal_velocity(NodalVector &velocity_out)
+  {
+    TimerOutput::Scope t(timer, "nodal update");
+    for (const unsigned int i : active_dofs)
+      {
+        const double m = nodal_mass.local_element(i);
+        velocity_out.local_element(i) =
+          m > 0 ? nodal_momentum.local_element(i) / m : 0.;
+      }
+    boundary_conditions.project_velocity(velocity_out);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_forces()
+  {
+    TimerOutput::Scope t(timer, "particle to grid");
+    using Layout           = PropertyLayout<dim>;
+    const Tensor<1, dim> g = time_stepping.gravity;
+    auto                 point = particle_handler.begin();
+    unsigned int         k     = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+        {
+          const auto   props = point->get_properties();
+          const double m     = props[Layout::mass];
+          const double V     = props[Layout::volume];
+          // The dim x dim part of the stress: the only part that exerts
+          // in-plane forces.
+          Tensor<2, dim> sigma;
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              sigma[a][b] = read_symmetric_tensor(&props[Layout::stress])[a][b];
+          const auto &sf = shape_functions[k];
+          for (unsigned int i = 0; i < sf.value.size(); ++i)
+            {
+              const Tensor<1, dim> f = -V * (sigma * sf.gradient[i]) +
+                                       (sf.value[i] * m) * g;
+              for (unsigned int c = 0; c < dim; ++c)
+                nodal_force.local_element(cell.dofs[i][c]) += f[c];
+            }
+        }
+    nodal_force.compress(VectorOperation::add);
+    nodal_force.update_ghost_values();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_nodal_kinematics()
+  {
+    TimerOutput::Scope t(timer, "nodal update");
+    const double       dt    = time_step;
+    const double       alpha = time_stepping.local_damping;
+    for (const unsigned int i : active_dofs)
+      {
+        const double m = nodal_mass.local_element(i);
+        double       f = nodal_force.local_element(i);
+        if (alpha > 0)
+          {
+            // Cundall's local damping: a force against the motion,
+            // proportional to the unbalanced force.
+            const double v = nodal_velocity.local_element(i);
+            f -= alpha * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
+          }
+        nodal_acceleration.local_element(i) = m > 0 ? f / m : 0.;
+      }
+    boundary_conditions.apply_friction(nodal_mass,
+                                       nodal_velocity,
+                                       nodal_acceleration,
+                                       dt);
+    for (const unsigned int i : active_dofs)
+      nodal_velocity_new.local_element(i) =
+        nodal_velocity.local_element(i) +
+        dt * nodal_acceleration.local_element(i);
+    boundary_conditions.project_velocity(nodal_velocity_new);
+    // The acceleration consistent with the constrained velocity change, so
+    // that the FLIP update of the points respects the constraints too.
+    for (const unsigned int i : active_dofs)
+      nodal_acceleration.local_element(i) =
+        (nodal_velocity_new.local_element(i) -
+         nodal_velocity.local_element(i)) /
+        dt;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_points_from_grid()
+  {
+    TimerOutput::Scope t(timer, "grid to particle");
+    using Layout        = PropertyLayout<dim>;
+    const double dt     = time_step;
+    const double flip   = time_stepping.flip_fraction;
+    double       v_max2 = 0;
+    auto         point  = particle_handler.begin();
+    unsigned int k      = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+        {
+          const auto    &N = shape_functions[k].value;
+          Tensor<1, dim> a, v_new;
+          for (unsigned int i = 0; i < N.size(); ++i)
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                a[c] += N[i] * nodal_acceleration.local_element(cell.dofs[i][c]);
+                v_new[c] +=
+                  N[i] * nodal_velocity_new.local_element(cell.dofs[i][c]);
+              }
+          auto       props = point->get_properties();
+          Point<dim> x     = point->get_location();
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              double &v = props[Layout::velocity + c];
+              v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
+              x[c] += dt * v_new[c];
+            }
+          point->set_location(x);
+          v_max2 = std::max(v_max2, read_vector<dim>(&props[Layout::velocity]).norm_square());
+        }
+    max_point_speed = Utilities::MPI::max(std::sqrt(v_max2), mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_stress(const NodalVector &velocity)
+  {
+    TimerOutput::Scope t(timer, "stress update");
+    using Layout    = PropertyLayout<dim>;
+    const double dt = time_step;
+    auto         point = particle_handler.begin();
+    unsigned int k     = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+        {
+          const auto    &sf = shape_functions[k];
+          Tensor<2, dim> grad_v;
+          for (unsigned int i = 0; i < sf.value.size(); ++i)
+            {
+              Tensor<1, dim> v;
+              for (unsigned int c = 0; c < dim; ++c)
+                v[c] = velocity.local_element(cell.dofs[i][c]);
+              grad_v += outer_product(v, sf.gradient[i]);
+            }
+          SymmetricTensor<2, 3> strain_increment;
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = a; b < dim; ++b)
+              strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
+
+          auto props = point->get_properties();
+          const Material &material =
+            materials[static_cast<unsigned int>(props[Layout::material_id])];
+          SymmetricTensor<2, 3> stress =
+            read_symmetric_tensor(&props[Layout::stress]);
+          material.model->update_stress(
+            strain_increment,
+            stress,
+            ArrayView<double>(props.data() + Layout::state,
+                              props.size() - Layout::state));
+          write_symmetric_tensor(stress, &props[Layout::stress]);
+          write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
+                                   strain_increment,
+                                 &props[Layout::strain]);
+          // Volume follows the determinant of the incremental deformation
+          // gradient I + dt grad v.
+          props[Layout::volume] *=
+            determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
+        }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::relocate_points()
+  {
+    TimerOutput::Scope t(timer, "locate points");
+    const auto n_lost_before = n_lost_points;
+    particle_handler.sort_particles_into_subdomains_and_cells();
+    const auto n_new_lost =
+      Utilities::MPI::sum(n_lost_points - n_lost_before, mpi_communicator);
+    if (n_new_lost > 0 && error_on_lost_points)
+      {
+        std::string first =
+          lost_point_descriptions.empty() ? std::string("(on another rank)") :
+                                            lost_point_descriptions.front();
+        throw std::runtime_error(
+          "At step " + std::to_string(step) + ", t = " + std::to_string(time) +
+          " s, " + std::to_string(n_new_lost) +
+          " material point(s) left the mesh; the first: " + first +
+          ". Enlarge the mesh, constrain the boundary it crossed, or set "
+          "'Material points/Points leaving the mesh = remove' to remove such "
+          "points and report their mass.");
+      }
+    if (n_new_lost > 0)
+      pcout << "Warning: " << n_new_lost << " material point(s) left the "
+            << "mesh at t = " << time << " s and were removed.\n";
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::do_time_step()
+  {
+    time_step = compute_time_step();
+    zero_nodal_fields();
+    prepare_transfer();
+    map_mass_and_momentum();
+    compute_nodal_velocity(nodal_velocity);
+    if (time_stepping.scheme == UpdateScheme::usf)
+      update_stress(nodal_velocity);
+    map_forces();
+    update_nodal_kinematics();
+    update_points_from_grid();
+    if (time_stepping.scheme == UpdateScheme::usl)
+      update_stress(nodal_velocity_new);
+    else if (time_stepping.scheme == UpdateScheme::musl)
+      {
+        map_momentum();
+        compute_nodal_velocity(nodal_velocity_new);
+        update_stress(nodal_velocity_new);
+      }
+    time += time_step;
+    ++step;
+    relocate_points();
+  }
+
+
+  template <int dim>
+  GlobalStatistics<dim>
+  Simulator<dim>::compute_statistics() const
+  {
+    using Layout = PropertyLayout<dim>;
+    GlobalStatistics<dim> s;
+    s.time      = time;
+    s.time_step = time_step;
+    s.step      = step;
+    for (const auto &point : particle_handler)
+      {
+        const auto           props = point.get_properties();
+        const double         m     = props[Layout::mass];
+        const Tensor<1, dim> v     = read_vector<dim>(&props[Layout::velocity]);
+        const Material      &material =
+          materials[static_cast<unsigned int>(props[Layout::material_id])];
+        s.mass += m;
+        s.volume += props[Layout::volume];
+        s.momentum += m * v;
+        s.kinetic_energy += 0.5 * m * v.norm_square();
+        s.strain_energy +=
+          props[Layout::volume] * material.model->strain_energy_density(
+                                    read_symmetric_tensor(&props[Layout::stress]));
+        s.gravitational_potential_energy -=
+          m * (time_stepping.gravity * point.get_location());
+        s.mean_speed += v.norm();
+        s.max_speed = std::max(s.max_speed, v.norm());
+        s.centre_of_mass += m * point.get_location();
+      }
+    s.n_points = particle_handler.n_global_particles();
+    s.mass     = Utilities::MPI::sum(s.mass, mpi_communicator);
+    s.volume   = Utilities::MPI::sum(s.volume, mpi_communicator);
+    s.momentum = Utilities::MPI::sum(s.momentum, mpi_communicator);
+    s.kinetic_energy = Utilities::MPI::sum(s.kinetic_energy, mpi_communicator);
+    s.strain_energy  = Utilities::MPI::sum(s.strain_energy, mpi_communicator);
+    s.gravitational_potential_energy =
+      Utilities::MPI::sum(s.gravitational_potential_energy, mpi_communicator);
+    s.mean_speed =
+      Utilities::MPI::sum(s.mean_speed, mpi_communicator) /
+      std::max<double>(1, s.n_points);
+    s.max_speed      = Utilities::MPI::max(s.max_speed, mpi_communicator);
+    s.centre_of_mass = Utilities::MPI::sum(s.centre_of_mass, mpi_communicator) /
+                       (s.mass > 0 ? s.mass : 1);
+    s.mean_velocity = s.momentum / (s.mass > 0 ? s.mass : 1);
+    return s;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_output(const bool force)
+  {
+    if (!force &&
+        !output_writer.output_due(time, time_step, time_stepping.end_time))
+      return;
+    TimerOutput::Scope t(timer, "output");
+    output_writer.mark_written(time);
+    output_writer.write_particles(particle_handler,
+                                  property_names(),
+                                  time,
+                                  output_index++,
+                                  mpi_communicator);
+    const auto s = compute_statistics();
+    if (statistics_file.is_open())
+      {
+        statistics_file << std::setprecision(10) << s.time << ' ' << s.step
+                        << ' ' << s.time_step << ' ' << s.n_points << ' '
+                        << s.mass;
+        for (unsigned int d = 0; d < dim; ++d)
+          statistics_file << ' ' << s.momentum[d];
+        statistics_file << ' ' << s.kinetic_energy << ' ' << s.strain_energy
+                        << ' ' << s.gravitational_potential_energy << ' '
+                        << s.mean_speed;
+        for (unsigned int d = 0; d < dim; ++d)
+          statistics_file << ' ' << s.centre_of_mass[d];
+        statistics_file << ' '
+                        << Utilities::MPI::sum(n_lost_points, mpi_communicator)
+                        << ' ' << Utilities::MPI::sum(lost_mass, mpi_communicator)
+                        << '\n';
+        statistics_file.flush();
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::run()
+  {
+    const auto wall_start = std::chrono::steady_clock::now();
+    setup();
+    output_writer.write_mesh(grid);
+    for (auto &p : postprocessors)
+      p->initialize(*this);
+    write_output(true);
+
+    double last_progress = 0;
+    auto   wall_seconds  = [&]() {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                           wall_start)
+        .count();
+    };
+    while (time < time_stepping.end_time * (1 - 1e-12))
+      {
+        do_time_step();
+        const bool output_step =
+          output_writer.output_due(time, time_step, time_stepping.end_time);
+        for (auto &p : postprocessors)
+          p->execute(*this, output_step);
+        write_output(false);
+
+        const double wall = wall_seconds();
+        if (wall - last_progress >= output_writer.progress_interval() ||
+            time >= time_stepping.end_time * (1 - 1e-12))
+          {
+            last_progress         = wall;
+            const double fraction = time / time_stepping.end_time;
+            pcout << "step " << std::setw(7) << step << "  t = " << std::setw(11)
+                  << std::setprecision(5) << time << " s  dt = " << std::setw(10)
+                  << time_step << " s  wall " << std::setprecision(3) << wall
+                  << " s  remaining ~" << wall * (1 - fraction) / fraction
+                  << " s" << std::endl;
+          }
+      }
+
+    std::ostringstream report;
+    report << "# dealii-mpm report: " << postprocessor_names.size()
+           << " postprocessor(s)\n";
+    for (auto &p : postprocessors)
+      p->write_report(*this, report);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ofstream(output_writer.directory() + "report.txt") << report.str();
+        if (!postprocessors.empty())
+          pcout << report.str();
+      }
+    const auto total_lost = Utilities::MPI::sum(n_lost_points, mpi_communicator);
+    if (total_lost > 0)
+      pcout << "Removed " << total_lost << " material point(s) that left the "
+            << "mesh, mass " << Utilities::MPI::sum(lost_mass, mpi_communicator)
+            << " kg.\n";
+    const double wall = wall_seconds();
+    pcout << "Done: " << step << " steps, "
+          << particle_handler.n_global_particles() << " points, wall time "
+          << wall << " s, "
+          << static_cast<double>(step) * particle_handler.n_global_particles() /
+               wall
+          << " particle-steps/s\n";
+    timer.print_summary();
+  }
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace MPM

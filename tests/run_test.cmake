@@ -1,0 +1,72 @@
+# Runs one regression test and compares its output with the expected one.
+#  - prm tests (PRM set): `mpm PRM --set "Output/Directory=WORKDIR"`;
+#    compares WORKDIR/report.txt. Tests whose name starts with bad_input_
+#    must fail with a non-zero exit code; their stderr is compared instead.
+#  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
+# Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
+# test's expected output's first line), else -a 1e-10 -r 1e-8.
+file(REMOVE_RECURSE ${WORKDIR})
+file(MAKE_DIRECTORY ${WORKDIR})
+
+set(_numdiff_options -a 1e-10 -r 1e-8)
+if(PRM)
+  file(STRINGS ${PRM} _tol REGEX "^# numdiff:")
+else()
+  file(STRINGS ${EXPECTED} _tol REGEX "^# numdiff:")
+endif()
+if(_tol)
+  string(REGEX REPLACE "^# numdiff:[ ]*" "" _tol "${_tol}")
+  separate_arguments(_numdiff_options UNIX_COMMAND "${_tol}")
+endif()
+
+get_filename_component(_name ${EXPECTED} NAME_WE)
+if(PRM)
+  execute_process(
+    COMMAND ${MPM} ${PRM} --set "Output/Directory=${WORKDIR}"
+    WORKING_DIRECTORY ${WORKDIR}
+    RESULT_VARIABLE _rc
+    OUTPUT_FILE ${WORKDIR}/screen.txt
+    ERROR_VARIABLE _stderr)
+  if(_name MATCHES "^bad_input_")
+    if(_rc EQUAL 0)
+      message(FATAL_ERROR "${_name}: expected a non-zero exit code, got 0")
+    endif()
+    # Normalise: the work directory differs from machine to machine.
+    string(REPLACE "${WORKDIR}" "WORKDIR" _stderr "${_stderr}")
+    get_filename_component(_prm_dir ${PRM} DIRECTORY)
+    string(REPLACE "${_prm_dir}/" "" _stderr "${_stderr}")
+    file(WRITE ${WORKDIR}/report.txt "exit code ${_rc}\n${_stderr}")
+  else()
+    if(NOT _rc EQUAL 0)
+      file(READ ${WORKDIR}/screen.txt _screen)
+      message(FATAL_ERROR "${_name}: mpm exited with ${_rc}\n${_screen}\n${_stderr}")
+    endif()
+  endif()
+  set(_result ${WORKDIR}/report.txt)
+else()
+  execute_process(
+    COMMAND ${EXECUTABLE}
+    WORKING_DIRECTORY ${WORKDIR}
+    RESULT_VARIABLE _rc
+    OUTPUT_FILE ${WORKDIR}/output.txt
+    ERROR_VARIABLE _stderr)
+  if(NOT _rc EQUAL 0)
+    message(FATAL_ERROR "${_name}: exited with ${_rc}\n${_stderr}")
+  endif()
+  set(_result ${WORKDIR}/output.txt)
+endif()
+
+if(NOT EXISTS ${EXPECTED})
+  file(READ ${_result} _got)
+  message(FATAL_ERROR "${_name}: no expected output ${EXPECTED}; this run gave:\n${_got}")
+endif()
+execute_process(
+  COMMAND ${NUMDIFF} -q ${_numdiff_options} ${_result} ${EXPECTED}
+  RESULT_VARIABLE _diff_rc
+  OUTPUT_VARIABLE _diff_out)
+if(NOT _diff_rc EQUAL 0)
+  execute_process(COMMAND ${NUMDIFF} ${_numdiff_options} ${_result} ${EXPECTED}
+    OUTPUT_VARIABLE _diff_out)
+  message(FATAL_ERROR "${_name}: output differs from ${EXPECTED} (numdiff ${_numdiff_options}):\n${_diff_out}")
+endif()
+message(STATUS "${_name}: output matches (numdiff ${_numdiff_options})")
