@@ -4,7 +4,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
-prm="${1:-$MPM_ROOT/prm/vibrating_bar.prm}"
+prm="${1:-$MPM_ROOT/prm/sliding_block.prm}"
 shift || true
 cd "$(dirname "$prm")"
 exec "$MPM_BUILD_DIR/mpm" "$(basename "$prm")" "$@"

@@ -176,6 +176,18 @@ namespace MPM
 
 
   template <int dim>
+  double
+  BoundaryConditions<dim>::friction_coefficient(const std::string &name) const
+  {
+    for (const auto &s : specs)
+      if (s.name == name)
+        return s.type == Type::friction ? s.friction_coefficient : 0.;
+    throw InputError("There is no boundary '" + name +
+                     "' in 'Boundary conditions/List of boundaries'.");
+  }
+
+
+  template <int dim>
   void
   BoundaryConditions<dim>::check_boundary_ids(const BackgroundGrid<dim> &grid) const
   {

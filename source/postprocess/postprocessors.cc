@@ -268,10 +268,120 @@ namespace MPM
     };
 
 
+    /**
+     * A rigid block sliding down an incline of angle theta under gravity
+     * with Coulomb friction mu at the bed (the paper's "Rigid Block"): while
+     * mu < tan(theta) the block accelerates at a = g (sin theta - mu cos
+     * theta), v = a t, s = a t^2 / 2; otherwise it sticks (a = 0). Reports
+     * the speed of the block (magnitude of its mean velocity) and the
+     * distance travelled by its centre of mass against v and s at output
+     * times, with relative errors, and the largest relative speed error
+     * over t >= 'Error from time'. mu is read from the bed boundary, so
+     * that a sweep over mu changes one parameter.
+     */
+    template <int dim>
+    class SlidingBlock : public Postprocessor<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm)
+      {
+        prm.declare_entry("Slope angle",
+                          "30",
+                          Patterns::Double(0, 90),
+                          "Angle theta of the incline to the horizontal "
+                          "(normal to gravity), in degrees.");
+        prm.declare_entry("Bed boundary",
+                          "bed",
+                          Patterns::Anything(),
+                          "Name of the frictional boundary the block slides "
+                          "on (from 'Boundary conditions/List of "
+                          "boundaries').");
+        prm.declare_entry("Error from time",
+                          "0.1",
+                          Patterns::Double(0),
+                          "Relative errors are maximised over t >= this (s): "
+                          "at t -> 0 the reference speed vanishes.");
+      }
+
+      void
+      parse_parameters(ParameterHandler &prm) override
+      {
+        theta      = prm.get_double("Slope angle") * M_PI / 180;
+        bed        = prm.get("Bed boundary");
+        error_from = prm.get_double("Error from time");
+      }
+
+      void
+      initialize(const Simulator<dim> &simulator) override
+      {
+        const double mu = simulator.get_boundary_conditions()
+                            .friction_coefficient(bed);
+        const double g  = simulator.get_time_stepping().gravity.norm();
+        acceleration    = std::max(0., g * (std::sin(theta) - mu * std::cos(theta)));
+        const auto s    = simulator.compute_statistics();
+        x0              = s.centre_of_mass;
+        t0              = s.time;
+        report_header << "## sliding block: theta = " << theta * 180 / M_PI
+                      << " deg, mu = " << mu
+                      << ", a = g (sin theta - mu cos theta) = "
+                      << acceleration << " m/s^2"
+                      << (acceleration == 0 ? " (sticks)" : "") << '\n';
+      }
+
+      void
+      execute(const Simulator<dim> &simulator, const bool output_step) override
+      {
+        const auto   s        = simulator.compute_statistics();
+        const double t        = s.time - t0;
+        const double v        = s.mean_velocity.norm();
+        const double d        = (s.centre_of_mass - x0).norm();
+        const double v_exact  = acceleration * t;
+        const double d_exact  = 0.5 * acceleration * t * t;
+        const double v_error  = v_exact > 0 ? (v - v_exact) / v_exact : v;
+        const double d_error  = d_exact > 0 ? (d - d_exact) / d_exact : d;
+        if (t >= error_from * (1 - 1e-12))
+          {
+            max_v_error = std::max(max_v_error, std::abs(v_error));
+            max_d_error = std::max(max_d_error, std::abs(d_error));
+          }
+        if (output_step)
+          table << std::setw(10) << s.time << std::setw(14) << v
+                << std::setw(14) << v_exact << std::setw(14) << v_error
+                << std::setw(14) << d << std::setw(14) << d_exact
+                << std::setw(14) << d_error << '\n';
+      }
+
+      void
+      write_report(const Simulator<dim> &, std::ostream &report) override
+      {
+        const bool sticks = acceleration == 0;
+        report << report_header.str()
+               << "# time (s)  speed mpm (m/s)  exact (m/s)  "
+               << (sticks ? "abs error (m/s)" : "rel error")
+               << "  distance mpm (m)  exact (m)  "
+               << (sticks ? "abs error (m)" : "rel error") << '\n'
+               << table.str() << "max " << (sticks ? "abs" : "relative")
+               << " speed error for t >= " << error_from
+               << " s: " << max_v_error << "\nmax "
+               << (sticks ? "abs" : "relative")
+               << " distance error for t >= " << error_from
+               << " s: " << max_d_error << '\n';
+      }
+
+    private:
+      double             theta = 0, error_from = 0.1, acceleration = 0, t0 = 0;
+      std::string        bed;
+      Point<dim>         x0;
+      double             max_v_error = 0, max_d_error = 0;
+      std::ostringstream table, report_header;
+    };
+
+
     std::string
     names()
     {
-      return "vibrating bar|self-weight column|conservation";
+      return "vibrating bar|self-weight column|conservation|sliding block";
     }
 
 
@@ -289,6 +399,9 @@ namespace MPM
       prm.enter_subsection("conservation");
       Conservation<dim>::declare_parameters(prm);
       prm.leave_subsection();
+      prm.enter_subsection("sliding block");
+      SlidingBlock<dim>::declare_parameters(prm);
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -304,6 +417,8 @@ namespace MPM
         p = std::make_unique<SelfWeightColumn<dim>>();
       else if (name == "conservation")
         p = std::make_unique<Conservation<dim>>();
+      else if (name == "sliding block")
+        p = std::make_unique<SlidingBlock<dim>>();
       else
         throw InputError("Unknown postprocessor '" + name + "'.");
       prm.enter_subsection("Postprocess");

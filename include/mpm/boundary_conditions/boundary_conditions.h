@@ -147,6 +147,13 @@ namespace MPM
     }
 
     /**
+     * Friction coefficient of the boundary called @p name (0 unless it is
+     * of type friction); InputError if there is no such boundary.
+     */
+    double
+    friction_coefficient(const std::string &name) const;
+
+    /**
      * Throw an InputError if a boundary id named in the parameter file does
      * not occur in the mesh.
      */

@@ -109,6 +109,12 @@ namespace MPM
       return grid;
     }
 
+    const BoundaryConditions<dim> &
+    get_boundary_conditions() const
+    {
+      return boundary_conditions;
+    }
+
     const TimeSteppingParameters<dim> &
     get_time_stepping() const
     {
