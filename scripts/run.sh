@@ -6,5 +6,6 @@ source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
 prm="${1:-$MPM_ROOT/prm/sliding_block.prm}"
 shift || true
-cd "$(dirname "$prm")"
-exec "$MPM_BUILD_DIR/mpm" "$(basename "$prm")" "$@"
+# Meshes and point files are found relative to the .prm file; output goes
+# to its Output/Directory relative to the current directory.
+exec "$MPM_BUILD_DIR/mpm" "$prm" "$@"
