@@ -494,6 +494,9 @@ namespace MPM
         Tensor<1, dim> v;
         for (unsigned int c = 0; c < dim; ++c)
           v[c] = velocity.local_element(node.local_dofs[c]);
+        // A frictional wall only pushes: a node moving away from it is free.
+        if (node.frictional && v * node.normal <= 0)
+          continue;
         v = node.projector * v + node.offset;
         for (unsigned int c = 0; c < dim; ++c)
           velocity.local_element(node.local_dofs[c]) = v[c];
@@ -509,39 +512,29 @@ namespace MPM
                                                    const double          mu,
                                                    const double          dt)
   {
-    // Normal reaction per unit mass needed to keep v_n = 0 at the end of the
-    // step; the wall only pushes, so friction acts only if it is positive.
+    // Normal velocity change per unit time that the wall must remove to keep
+    // v_n = 0 at the end of the step: the normal reaction per unit mass. The
+    // wall only pushes, so friction acts only if it is positive.
     const double v_n      = v * n;
     const double a_n      = a * n;
     const double reaction = v_n / dt + a_n;
     if (reaction <= 0)
       return a;
 
-    const Tensor<1, dim> v_t      = v - v_n * n;
-    Tensor<1, dim>       a_t      = a - a_n * n;
-    const double         capacity = mu * reaction;
-    const double         speed_t  = v_t.norm();
-
-    if (speed_t > 1e-12 * (v.norm() + dt * a.norm()))
-      {
-        // Kinetic: friction opposes the tangential velocity, but never
-        // reverses it within the step; it stops at zero instead.
-        const Tensor<1, dim> direction = v_t / speed_t;
-        a_t -= capacity * direction;
-        if ((v_t + dt * a_t) * direction < 0)
-          a_t = -v_t / dt;
-      }
-    else
-      {
-        // Static: at rest while the tangential demand is below mu times the
-        // normal reaction.
-        const double demand = a_t.norm();
-        if (demand <= capacity)
-          a_t = -v_t / dt;
-        else
-          a_t -= capacity * a_t / demand;
-      }
-    return a_n * n + a_t;
+    // Coulomb's law integrated by backward Euler: the tangential velocity
+    // the node would reach without friction (the trial velocity) is
+    // reduced by at most mu * reaction * dt. If that stops it, the node
+    // sticks (static friction, or kinetic friction that would otherwise
+    // reverse the motion within the step); else it slides on with friction
+    // opposing the trial velocity.
+    const Tensor<1, dim> v_t       = v - v_n * n;
+    const Tensor<1, dim> v_t_trial = v_t + dt * (a - a_n * n);
+    const double         speed     = v_t_trial.norm();
+    const double         capacity  = mu * reaction * dt;
+    const Tensor<1, dim> v_t_new =
+      speed <= capacity ? Tensor<1, dim>() :
+                          (1. - capacity / speed) * v_t_trial;
+    return a_n * n + (v_t_new - v_t) / dt;
   }
 
 
