@@ -1,5 +1,6 @@
 /**
- * The `mpm` executable: reads a parameter file (two passes, so that the
+ * The `mpm` executable: reads one or more parameter files (later ones
+ * override earlier ones; two passes, so that the
  * user-named subsections - materials, regions, boundaries - can be
  * declared), applies command line overrides and runs the simulation.
  */
@@ -25,16 +26,16 @@ namespace
     // Pass 1: the lists of names that decide which subsections exist.
     ParameterHandler names_prm;
     Simulator<dim>::declare_name_lists(names_prm);
-    if (!cl.parameter_file.empty())
-      parse_parameter_file(names_prm, cl.parameter_file, true);
+    for (const auto &file : cl.parameter_files)
+      parse_parameter_file(names_prm, file, true);
     apply_overrides(names_prm, cl.overrides, true);
     const auto names = Simulator<dim>::read_name_lists(names_prm);
 
     // Pass 2: everything, strictly.
     ParameterHandler prm;
     Simulator<dim>::declare_parameters(prm, names);
-    if (!cl.parameter_file.empty())
-      parse_parameter_file(prm, cl.parameter_file, false);
+    for (const auto &file : cl.parameter_files)
+      parse_parameter_file(prm, file, false);
     apply_overrides(prm, cl.overrides, false);
 
     if (cl.print_parameters)
@@ -45,7 +46,10 @@ namespace
       }
 
     Simulator<dim> simulator(comm);
-    simulator.parse_parameters(prm, directory_of(cl.parameter_file));
+    simulator.parse_parameters(prm,
+                               cl.parameter_files.empty() ?
+                                 std::string(".") :
+                                 directory_of(cl.parameter_files.front()));
     simulator.run();
     return 0;
   }
@@ -63,7 +67,7 @@ main(int argc, char **argv)
         {
           const CommandLine cl = parse_command_line(argc, argv);
           if (cl.show_help ||
-              (cl.parameter_file.empty() && !cl.print_parameters))
+              (cl.parameter_files.empty() && !cl.print_parameters))
             {
               std::cout << usage();
               return cl.show_help ? 0 : 1;
@@ -71,8 +75,8 @@ main(int argc, char **argv)
 
           ParameterHandler dim_prm;
           dim_prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "");
-          if (!cl.parameter_file.empty())
-            parse_parameter_file(dim_prm, cl.parameter_file, true);
+          for (const auto &file : cl.parameter_files)
+            parse_parameter_file(dim_prm, file, true);
           apply_overrides(dim_prm, cl.overrides, true);
           return dim_prm.get_integer("Dimension") == 2 ?
                    run<2>(cl, MPI_COMM_WORLD) :

@@ -1,6 +1,7 @@
 # Runs one regression test and compares its output with the expected one.
-#  - prm tests (PRM set): `mpm PRM --set "Output/Directory=WORKDIR"`;
-#    compares WORKDIR/report.txt. Tests whose name starts with bad_input_
+#  - prm tests (PRM set): `mpm [BASE] PRM --set "Output/Directory=WORKDIR"`
+#    (BASE from a line "# base: FILE" in PRM); compares WORKDIR/report.txt
+#    with EXPECTED, or with the file named by "# expected output: FILE". Tests whose name starts with bad_input_
 #    must fail with a non-zero exit code; their stderr is compared instead.
 #  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
 # Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
@@ -21,8 +22,24 @@ endif()
 
 get_filename_component(_name ${EXPECTED} NAME_WE)
 if(PRM)
+  get_filename_component(_prm_dir ${PRM} DIRECTORY)
+  # "# base: FILE": the test only overrides entries of FILE (a shipped case,
+  # path relative to tests/); mpm reads FILE, then the test's .prm.
+  set(_files ${PRM})
+  file(STRINGS ${PRM} _base REGEX "^# base:")
+  if(_base)
+    string(REGEX REPLACE "^# base:[ ]*" "" _base "${_base}")
+    set(_files ${_prm_dir}/${_base} ${PRM})
+  endif()
+  # "# expected output: OTHER.output": compare with another test's expected
+  # output (e.g. a rotated scene must reproduce the unrotated one).
+  file(STRINGS ${PRM} _other REGEX "^# expected output:")
+  if(_other)
+    string(REGEX REPLACE "^# expected output:[ ]*" "" _other "${_other}")
+    set(EXPECTED ${_prm_dir}/${_other})
+  endif()
   execute_process(
-    COMMAND ${MPM} ${PRM} --set "Output/Directory=${WORKDIR}"
+    COMMAND ${MPM} ${_files} --set "Output/Directory=${WORKDIR}"
     WORKING_DIRECTORY ${WORKDIR}
     RESULT_VARIABLE _rc
     OUTPUT_FILE ${WORKDIR}/screen.txt
@@ -33,7 +50,6 @@ if(PRM)
     endif()
     # Normalise: the work directory differs from machine to machine.
     string(REPLACE "${WORKDIR}" "WORKDIR" _stderr "${_stderr}")
-    get_filename_component(_prm_dir ${PRM} DIRECTORY)
     string(REPLACE "${_prm_dir}/" "" _stderr "${_stderr}")
     file(WRITE ${WORKDIR}/report.txt "exit code ${_rc}\n${_stderr}")
   else()

@@ -32,9 +32,10 @@ namespace MPM
   std::string
   usage()
   {
-    return "Usage: mpm [--print-parameters] [input.prm] "
+    return "Usage: mpm [--print-parameters] [input.prm [more.prm ...]] "
            "[--set \"Subsection/Entry=value\"]...\n"
-           "  input.prm             parameter file to run\n"
+           "  input.prm             parameter file to run; further files "
+           "override its entries\n"
            "  --set PATH=VALUE      override one parameter after reading the "
            "file (repeatable)\n"
            "  --print-parameters    print every parameter with its "
@@ -78,12 +79,7 @@ namespace MPM
           throw InputError("Unknown command line option '" + arg + "'.\n" +
                            usage());
         else
-          {
-            check_input(cl.parameter_file.empty(),
-                        "More than one parameter file given ('" +
-                          cl.parameter_file + "' and '" + arg + "').");
-            cl.parameter_file = arg;
-          }
+          cl.parameter_files.push_back(arg);
       }
     return cl;
   }

@@ -317,7 +317,8 @@ namespace MPM
                   weighted[c] = normal_sum[s].local_element(
                     layout.get_partitioner()->global_to_local(nc.dofs[c]));
                 if (!specs[s].normal_from_mesh)
-                  weighted = specs[s].given_normal * std::max(weighted.norm(), 1e-300);
+                  weighted = grid.to_mesh_frame(specs[s].given_normal) *
+                             std::max(weighted.norm(), 1e-300);
                 if (specs[s].type == Type::fixed)
                   fixed = true;
                 else if (weighted.norm() == 0)

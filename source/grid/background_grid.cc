@@ -65,6 +65,17 @@ namespace MPM
                         Patterns::Integer(0, 12),
                         "Number of times every cell is split into 2^dim "
                         "children after the mesh is read or generated.");
+      prm.declare_entry(
+        "Scene rotation angle",
+        "0",
+        Patterns::Double(-360, 360),
+        "Rotate the whole scene by this angle (degrees, counter-clockwise; "
+        "about the z axis in 3D): the mesh and every position, vector and "
+        "tensor of this file (point regions, gravity, initial velocity and "
+        "stress, given boundary normals) are given in the scene's own frame "
+        "and turned with it. Results in the mesh frame (positions, "
+        "velocities, stresses in the output) are rotated; frame-independent "
+        "ones (speeds, distances, energies) must not change.");
     }
     prm.leave_subsection();
   }
@@ -82,6 +93,7 @@ namespace MPM
       generator_name       = prm.get("Generator name");
       generator_arguments  = prm.get("Generator arguments");
       n_global_refinements = prm.get_integer("Global refinements");
+      rotation_angle = prm.get_double("Scene rotation angle") * M_PI / 180;
     }
     prm.leave_subsection();
     if (source == "gmsh")
@@ -134,6 +146,18 @@ namespace MPM
           }
       }
     triangulation.refine_global(n_global_refinements);
+
+    rotation = unit_symmetric_tensor<dim>();
+    if (rotation_angle != 0)
+      {
+        rotation[0][0] = rotation[1][1] = std::cos(rotation_angle);
+        rotation[1][0]                  = std::sin(rotation_angle);
+        rotation[0][1]                  = -std::sin(rotation_angle);
+        GridTools::transform([this](const Point<dim> &x) {
+          return to_mesh_frame(x);
+        },
+                             triangulation);
+      }
 
     double h = std::numeric_limits<double>::max();
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -188,6 +212,18 @@ namespace MPM
       parts.size() == 4 && Utilities::trim(parts[3]) == "true";
     GridGenerator::subdivided_hyper_rectangle(
       triangulation, repetitions, p0, p1, colorize);
+  }
+
+
+  template <int dim>
+  SymmetricTensor<2, 3>
+  BackgroundGrid<dim>::to_mesh_frame(const SymmetricTensor<2, 3> &t) const
+  {
+    Tensor<2, 3> R = unit_symmetric_tensor<3>();
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        R[a][b] = rotation[a][b];
+    return symmetrize(R * Tensor<2, 3>(t) * transpose(R));
   }
 
 

@@ -294,6 +294,8 @@ namespace MPM
                           std::to_string(line_number) + ": expected " +
                           std::to_string(dim) +
                           " coordinates and a positive volume.");
+            // Positions in the file are in the scene's frame.
+            p                = grid.to_mesh_frame(p);
             const auto found = GridTools::find_active_cell_around_point(
               cache, p, typename Triangulation<dim>::active_cell_iterator(), {}, 1e-10);
             if (found.first.state() != IteratorState::valid)
@@ -346,15 +348,27 @@ namespace MPM
             if (cell->material_id() != region.cell_material_id)
               continue;
           }
-        else if (region_box.get_neighbor_type(cell->bounding_box()) ==
-                 NeighborType::not_neighbors)
-          continue;
+        else
+          {
+            // Regions are given in the scene's frame.
+            BoundingBox<dim> cell_box = cell->bounding_box();
+            if (grid.is_rotated())
+              {
+                std::vector<Point<dim>> vertices;
+                for (const unsigned int v : cell->vertex_indices())
+                  vertices.push_back(grid.to_scene_frame(cell->vertex(v)));
+                cell_box = BoundingBox<dim>(vertices);
+              }
+            if (region_box.get_neighbor_type(cell_box) ==
+                NeighborType::not_neighbors)
+              continue;
+          }
 
         fe_values.reinit(cell);
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
             const Point<dim> &x = fe_values.quadrature_point(q);
-            if (region.contains(x))
+            if (region.contains(grid.to_scene_frame(x)))
               points.push_back({x,
                                 sub_cell_centres.point(q),
                                 cell,
@@ -397,7 +411,8 @@ namespace MPM
           {
             double y_max = -std::numeric_limits<double>::max();
             for (const auto &p : points)
-              y_max = std::max(y_max, p.location[dim - 1]);
+              y_max =
+                std::max(y_max, grid.to_scene_frame(p.location)[dim - 1]);
             surface = Utilities::MPI::max(y_max, comm);
           }
 
@@ -412,23 +427,30 @@ namespace MPM
             std::fill(properties.begin(), properties.end(), 0.);
             properties[Layout::mass]   = material.density * p.volume;
             properties[Layout::volume] = p.volume;
+            // The functions of the parameter file live in the scene's
+            // frame; their values are turned into the mesh's.
+            const Point<dim> X = grid.to_scene_frame(p.location);
+            Tensor<1, dim>   velocity;
             for (unsigned int d = 0; d < dim; ++d)
-              properties[Layout::velocity + d] =
-                region.initial_velocity->value(p.location, d);
+              velocity[d] = region.initial_velocity->value(X, d);
+            velocity = grid.to_mesh_frame(velocity);
+            for (unsigned int d = 0; d < dim; ++d)
+              properties[Layout::velocity + d] = velocity[d];
 
             SymmetricTensor<2, 3> stress;
             if (region.initial_stress == "geostatic")
               {
                 const double s_v = material.density * gravity[dim - 1] *
-                                   (surface - p.location[dim - 1]);
+                                   (surface - X[dim - 1]);
                 for (unsigned int d = 0; d < 3; ++d)
                   stress[d][d] = (d == dim - 1) ? s_v : k0 * s_v;
               }
             else if (region.initial_stress == "function")
               for (unsigned int k = 0; k < 6; ++k)
                 stress[voigt_index[k][0]][voigt_index[k][1]] =
-                  region.initial_stress_function->value(p.location, k);
-            write_symmetric_tensor(stress, &properties[Layout::stress]);
+                  region.initial_stress_function->value(X, k);
+            write_symmetric_tensor(grid.to_mesh_frame(stress),
+                                   &properties[Layout::stress]);
 
             properties[Layout::material_id] = region.material_index;
             material.model->initialize_state(

@@ -172,6 +172,8 @@ namespace MPM
                              materials,
                              time_stepping.gravity,
                              particle_handler);
+    // Gravity is given in the scene's frame, like everything else.
+    time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;

@@ -21,7 +21,11 @@ namespace MPM
    */
   struct CommandLine
   {
-    std::string                                      parameter_file;
+    /// Parameter files in the order given: later files override earlier
+    /// ones, as --set does (a test or a sweep states only what differs
+    /// from a shipped case). Relative file names inside them (meshes,
+    /// point files) are resolved against the directory of the first.
+    std::vector<std::string>                         parameter_files;
     std::vector<std::pair<std::string, std::string>> overrides;
     bool                                             print_parameters = false;
     bool                                             show_help        = false;

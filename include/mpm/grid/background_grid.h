@@ -3,6 +3,7 @@
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
 
 #include <deal.II/distributed/tria.h>
 
@@ -70,6 +71,49 @@ namespace MPM
       return min_cell_size;
     }
 
+    /**
+     * @name Scene rotation.
+     * The parameter file describes a scene in its own frame; "Mesh/Scene
+     * rotation angle" turns the whole scene (about the z axis in 3D) so
+     * that the same case can be run in any orientation: the mesh is rotated
+     * when it is created, and every position, vector and tensor given in
+     * the parameter file (point regions, gravity, initial velocity and
+     * stress, given boundary normals) is rotated with it by the classes that
+     * read them, through these functions. This is how the tests prove that
+     * the node-frame machinery does not depend on the orientation.
+     * @{
+     */
+    /// From the parameter file's frame to the mesh's: R x.
+    Tensor<1, dim>
+    to_mesh_frame(const Tensor<1, dim> &v) const
+    {
+      return rotation * v;
+    }
+
+    Point<dim>
+    to_mesh_frame(const Point<dim> &x) const
+    {
+      return Point<dim>(rotation * x);
+    }
+
+    /// R sigma R^T for a 3x3 stress (plane strain in 2D).
+    SymmetricTensor<2, 3>
+    to_mesh_frame(const SymmetricTensor<2, 3> &t) const;
+
+    /// From the mesh's frame back to the parameter file's: R^T x.
+    Point<dim>
+    to_scene_frame(const Point<dim> &x) const
+    {
+      return Point<dim>(transpose(rotation) * x);
+    }
+
+    bool
+    is_rotated() const
+    {
+      return rotation_angle != 0;
+    }
+    /** @} */
+
     parallel::distributed::Triangulation<dim> triangulation;
     MappingQ1<dim>                            mapping;
     FESystem<dim>                             fe;
@@ -87,6 +131,9 @@ namespace MPM
     std::string  generator_name;
     std::string  generator_arguments;
     unsigned int n_global_refinements = 0;
+    /// Scene rotation angle (radians) and its matrix.
+    double         rotation_angle = 0;
+    Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
     double       min_cell_size        = 0;
   };
 } // namespace MPM

@@ -62,7 +62,9 @@ namespace MPM
     /**
      * Insert the points of every region into @p particle_handler, with
      * globally unique ids 0, 1, ... (ordered by rank, then region, then
-     * cell). @p gravity is needed for the geostatic initial stress.
+     * cell). @p gravity (in the scene's frame, see
+     * BackgroundGrid::to_mesh_frame()) is needed for the geostatic initial
+     * stress.
      */
     void
     generate(const BackgroundGrid<dim>      &grid,
