@@ -37,9 +37,9 @@ namespace MPM
        */
       bool
       solve(std::array<std::array<double, 3>, 3> A,
-            std::array<double, 3>                 b,
-            const unsigned int                    m,
-            std::array<double, 3>                &x)
+            std::array<double, 3>                b,
+            const unsigned int                   m,
+            std::array<double, 3>               &x)
       {
         double a_max = 0;
         for (unsigned int i = 0; i < m; ++i)
@@ -48,30 +48,30 @@ namespace MPM
         if (a_max == 0)
           return false;
         for (unsigned int k = 0; k < m; ++k)
+        {
+          unsigned int p = k;
+          for (unsigned int i = k + 1; i < m; ++i)
+            if (std::abs(A[i][k]) > std::abs(A[p][k]))
+              p = i;
+          if (std::abs(A[p][k]) < 1e-10 * a_max)
+            return false;
+          std::swap(A[k], A[p]);
+          std::swap(b[k], b[p]);
+          for (unsigned int i = k + 1; i < m; ++i)
           {
-            unsigned int p = k;
-            for (unsigned int i = k + 1; i < m; ++i)
-              if (std::abs(A[i][k]) > std::abs(A[p][k]))
-                p = i;
-            if (std::abs(A[p][k]) < 1e-10 * a_max)
-              return false;
-            std::swap(A[k], A[p]);
-            std::swap(b[k], b[p]);
-            for (unsigned int i = k + 1; i < m; ++i)
-              {
-                const double l = A[i][k] / A[k][k];
-                for (unsigned int j = k; j < m; ++j)
-                  A[i][j] -= l * A[k][j];
-                b[i] -= l * b[k];
-              }
+            const double l = A[i][k] / A[k][k];
+            for (unsigned int j = k; j < m; ++j)
+              A[i][j] -= l * A[k][j];
+            b[i] -= l * b[k];
           }
+        }
         for (unsigned int k = m; k-- > 0;)
-          {
-            double r = b[k];
-            for (unsigned int j = k + 1; j < m; ++j)
-              r -= A[k][j] * x[j];
-            x[k] = r / A[k][k];
-          }
+        {
+          double r = b[k];
+          for (unsigned int j = k + 1; j < m; ++j)
+            r -= A[k][j] * x[j];
+          x[k] = r / A[k][k];
+        }
         return true;
       }
     } // namespace
@@ -116,8 +116,8 @@ namespace MPM
     void
     MohrCoulomb::parse_parameters(ParameterHandler &prm)
     {
-      youngs_modulus = prm.get_double("Young's modulus");
-      poisson_ratio  = prm.get_double("Poisson's ratio");
+      youngs_modulus           = prm.get_double("Young's modulus");
+      poisson_ratio            = prm.get_double("Poisson's ratio");
       const double phi_degrees = prm.get_double("Friction angle");
       const double psi_degrees = prm.get_double("Dilation angle");
       cohesion                 = prm.get_double("Cohesion");
@@ -151,13 +151,11 @@ namespace MPM
       // input mistake, not a harmless no-op. Rounding in a value copied
       // from a calculator is accepted and clamped.
       const double apex = cohesion / std::tan(friction_angle);
-      check_input(tension_cutoff >= 0 &&
-                    tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
-                  name_of("Tension cutoff") + " = " +
-                    std::to_string(tension_cutoff) +
-                    " Pa: must lie in [0, c cot(phi) = " +
-                    std::to_string(apex) +
-                    " Pa], the apex of the Mohr-Coulomb surface.");
+      check_input(
+        tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
+        name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
+          " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
+          " Pa], the apex of the Mohr-Coulomb surface.");
       tension_cutoff = std::min(tension_cutoff, apex);
 
       shear_modulus = youngs_modulus / (2 * (1 + poisson_ratio));
@@ -183,18 +181,18 @@ namespace MPM
       gradient[2] = {{0, 1 + sin_phi, -(1 - sin_phi)}};
       flow[2]     = {{0, 1 + sin_psi, -(1 - sin_psi)}};
       for (unsigned int i = 0; i < 3; ++i)
-        {
-          gradient[3 + i]    = {{0, 0, 0}};
-          gradient[3 + i][i] = 1;
-          flow[3 + i]        = gradient[3 + i];
-        }
+      {
+        gradient[3 + i]    = {{0, 0, 0}};
+        gradient[3 + i][i] = 1;
+        flow[3 + i]        = gradient[3 + i];
+      }
       for (unsigned int s = 0; s < 6; ++s)
-        {
-          bound[s] = (s < 3) ? k : tension_cutoff;
-          const double tr = flow[s][0] + flow[s][1] + flow[s][2];
-          for (unsigned int i = 0; i < 3; ++i)
-            return_direction[s][i] = lambda * tr + 2 * shear_modulus * flow[s][i];
-        }
+      {
+        bound[s]        = (s < 3) ? k : tension_cutoff;
+        const double tr = flow[s][0] + flow[s][1] + flow[s][2];
+        for (unsigned int i = 0; i < 3; ++i)
+          return_direction[s][i] = lambda * tr + 2 * shear_modulus * flow[s][i];
+      }
 
       // Candidate sets of at most three surfaces (three independent planes
       // fix a point in principal space), fewest first: a point on a plane
@@ -212,15 +210,13 @@ namespace MPM
     {
       const std::array<double, 3> trial = s;
 
-      const double scale = std::max({std::abs(s[0]),
-                                     std::abs(s[1]),
-                                     std::abs(s[2]),
-                                     bound[0],
-                                     bound[3]});
-      const double tol   = relative_tolerance * scale;
+      const double scale = std::max(
+        {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), bound[0], bound[3]});
+      const double tol = relative_tolerance * scale;
 
-      const auto f = [this](const unsigned int            k,
-                            const std::array<double, 3> &x) {
+      const auto f =
+        [this](const unsigned int k, const std::array<double, 3> &x)
+      {
         return gradient[k][0] * x[0] + gradient[k][1] * x[1] +
                gradient[k][2] * x[2] - bound[k];
       };
@@ -228,10 +224,10 @@ namespace MPM
       std::array<double, 6> f_trial;
       bool                  elastic = true;
       for (unsigned int k = 0; k < 6; ++k)
-        {
-          f_trial[k] = f(k, trial);
-          elastic    = elastic && (f_trial[k] <= tol);
-        }
+      {
+        f_trial[k] = f(k, trial);
+        elastic    = elastic && (f_trial[k] <= tol);
+      }
       if (elastic)
         return 0;
 
@@ -240,68 +236,68 @@ namespace MPM
       const double multiplier_tol = tol / (lambda + 2 * shear_modulus);
 
       for (const unsigned int set : candidate_sets)
+      {
+        std::array<unsigned int, 3> active;
+        unsigned int                m = 0;
+        for (unsigned int k = 0; k < 6; ++k)
+          if (set & (1u << k))
+            active[m++] = k;
+
+        // f_k(trial - sum_l dgamma_l r_l) = 0 for every active k.
+        std::array<std::array<double, 3>, 3> A{};
+        std::array<double, 3>                rhs{}, dgamma{};
+        for (unsigned int i = 0; i < m; ++i)
         {
-          std::array<unsigned int, 3> active;
-          unsigned int                m = 0;
-          for (unsigned int k = 0; k < 6; ++k)
-            if (set & (1u << k))
-              active[m++] = k;
-
-          // f_k(trial - sum_l dgamma_l r_l) = 0 for every active k.
-          std::array<std::array<double, 3>, 3> A{};
-          std::array<double, 3>                rhs{}, dgamma{};
-          for (unsigned int i = 0; i < m; ++i)
-            {
-              rhs[i] = f_trial[active[i]];
-              for (unsigned int j = 0; j < m; ++j)
-                for (unsigned int d = 0; d < 3; ++d)
-                  A[i][j] += gradient[active[i]][d] *
-                             return_direction[active[j]][d];
-            }
-          if (!solve(A, rhs, m, dgamma))
-            continue;
-          if (std::any_of(dgamma.begin(), dgamma.begin() + m, [&](double g) {
-                return g < -multiplier_tol;
-              }))
-            continue;
-
-          std::array<double, 3> x = trial;
-          if (m < 3)
-            for (unsigned int j = 0; j < m; ++j)
-              for (unsigned int d = 0; d < 3; ++d)
-                x[d] -= dgamma[j] * return_direction[active[j]][d];
-          else
-            {
-              // Three planes fix the point: compute it from the planes
-              // themselves, which puts the apex of a cohesionless material
-              // exactly at zero stress instead of at a rounding residue.
-              std::array<std::array<double, 3>, 3> G;
-              std::array<double, 3>                b;
-              for (unsigned int i = 0; i < 3; ++i)
-                {
-                  G[i] = gradient[active[i]];
-                  b[i] = bound[active[i]];
-                }
-              if (!solve(G, b, 3, x))
-                continue;
-            }
-
-          if (x[0] < x[1] - tol || x[1] < x[2] - tol)
-            continue;
-          bool admissible = true;
-          for (unsigned int k = 0; k < 6; ++k)
-            admissible = admissible && (f(k, x) <= tol);
-          if (!admissible)
-            continue;
-
-          // Ties within the tolerance are equal principal stresses.
-          if (x[0] < x[1])
-            x[0] = x[1] = 0.5 * (x[0] + x[1]);
-          if (x[1] < x[2])
-            x[1] = x[2] = 0.5 * (x[1] + x[2]);
-          s = x;
-          return set;
+          rhs[i] = f_trial[active[i]];
+          for (unsigned int j = 0; j < m; ++j)
+            for (unsigned int d = 0; d < 3; ++d)
+              A[i][j] +=
+                gradient[active[i]][d] * return_direction[active[j]][d];
         }
+        if (!solve(A, rhs, m, dgamma))
+          continue;
+        if (std::any_of(dgamma.begin(),
+                        dgamma.begin() + m,
+                        [&](double g) { return g < -multiplier_tol; }))
+          continue;
+
+        std::array<double, 3> x = trial;
+        if (m < 3)
+          for (unsigned int j = 0; j < m; ++j)
+            for (unsigned int d = 0; d < 3; ++d)
+              x[d] -= dgamma[j] * return_direction[active[j]][d];
+        else
+        {
+          // Three planes fix the point: compute it from the planes
+          // themselves, which puts the apex of a cohesionless material
+          // exactly at zero stress instead of at a rounding residue.
+          std::array<std::array<double, 3>, 3> G;
+          std::array<double, 3>                b;
+          for (unsigned int i = 0; i < 3; ++i)
+          {
+            G[i] = gradient[active[i]];
+            b[i] = bound[active[i]];
+          }
+          if (!solve(G, b, 3, x))
+            continue;
+        }
+
+        if (x[0] < x[1] - tol || x[1] < x[2] - tol)
+          continue;
+        bool admissible = true;
+        for (unsigned int k = 0; k < 6; ++k)
+          admissible = admissible && (f(k, x) <= tol);
+        if (!admissible)
+          continue;
+
+        // Ties within the tolerance are equal principal stresses.
+        if (x[0] < x[1])
+          x[0] = x[1] = 0.5 * (x[0] + x[1]);
+        if (x[1] < x[2])
+          x[1] = x[2] = 0.5 * (x[1] + x[2]);
+        s = x;
+        return set;
+      }
 
       // Not reached for phi in (0, 90) and psi in [0, phi] (the unit test
       // counts it over random trial stresses); the apex of the admissible
@@ -329,21 +325,22 @@ namespace MPM
       // coincide, which is exactly where the edge returns put them, and a
       // returned stress would then look slightly outside the surface.
       const auto eigen =
-        eigenvectors(trial, SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
+        eigenvectors(trial,
+                     SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
       std::array<double, 3> s = {
         {eigen[0].first, eigen[1].first, eigen[2].first}};
       const std::array<double, 3> s_trial = s;
 
       if (return_principal(s) == 0)
-        {
-          stress = trial;
-          return;
-        }
+      {
+        stress = trial;
+        return;
+      }
 
       stress = 0;
       for (unsigned int i = 0; i < 3; ++i)
-        stress += s[i] * symmetrize(outer_product(eigen[i].second,
-                                                  eigen[i].second));
+        stress +=
+          s[i] * symmetrize(outer_product(eigen[i].second, eigen[i].second));
 
       // Plastic strain increment C (s_trial - s) in the principal frame,
       // and its deviatoric norm.
@@ -364,7 +361,8 @@ namespace MPM
 
 
     double
-    MohrCoulomb::strain_energy_density(const SymmetricTensor<2, 3> &stress) const
+    MohrCoulomb::strain_energy_density(
+      const SymmetricTensor<2, 3> &stress) const
     {
       // 1/2 sigma : C^{-1} : sigma, the elastic energy of the current stress.
       const double tr = trace(stress);

@@ -73,7 +73,8 @@ namespace
   std::array<double, 3>
   principal(const SymmetricTensor<2, 3> &s)
   {
-    const auto e = eigenvectors(s, SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
+    const auto e =
+      eigenvectors(s, SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
     return {{e[0].first, e[1].first, e[2].first}};
   }
 
@@ -164,7 +165,7 @@ namespace
                                   "tension_2",
                                   "tension_3",
                                   "fallback"};
-    std::string name;
+    std::string        name;
     for (unsigned int k = 0; k < 7; ++k)
       if (set & (1u << k))
         name += (name.empty() ? "" : "+") + std::string(names[k]);
@@ -183,22 +184,23 @@ namespace
   test_input_errors()
   {
     std::cout << "(0) input checks\n";
-    const auto expect_error = [](const Parameters &p) {
+    const auto expect_error = [](const Parameters &p)
+    {
       try
-        {
-          make_model(p);
-          check(false, "accepted invalid input");
-        }
+      {
+        make_model(p);
+        check(false, "accepted invalid input");
+      }
       catch (const MPM::InputError &e)
-        {
-          std::cout << "    rejected: " << e.what() << '\n';
-        }
+      {
+        std::cout << "    rejected: " << e.what() << '\n';
+      }
     };
     Parameters p;
     p.nu = 0.5;
     expect_error(p);
-    p    = Parameters();
-    p.E  = 0;
+    p   = Parameters();
+    p.E = 0;
     expect_error(p);
     p     = Parameters();
     p.psi = 45;
@@ -206,13 +208,13 @@ namespace
     p   = Parameters();
     p.T = 100;
     expect_error(p);
-    p     = Parameters();
-    p.c   = 1e4;
-    p.T   = 1e4 / std::tan(40 * M_PI / 180);
+    p      = Parameters();
+    p.c    = 1e4;
+    p.T    = 1e4 / std::tan(40 * M_PI / 180);
     auto m = make_model(p);
     std::cout << "    T = c cot(phi) accepted; default K0 = " << m->default_k0()
-              << ", reference 1 - sin(40 deg) = " << 1 - std::sin(40 * M_PI / 180)
-              << '\n';
+              << ", reference 1 - sin(40 deg) = "
+              << 1 - std::sin(40 * M_PI / 180) << '\n';
   }
 
 
@@ -231,17 +233,18 @@ namespace
     le.parse_parameters(prm);
 
     SymmetricTensor<2, 3> de;
-    de[0][0] = -2e-4;
-    de[1][1] = 1e-4;
-    de[0][1] = 3e-4;
+    de[0][0]                   = -2e-4;
+    de[1][1]                   = 1e-4;
+    de[0][1]                   = 3e-4;
     SymmetricTensor<2, 3> s_mc = diagonal(-1e5, -1e5, -1e5), s_le = s_mc;
     double                state = 0;
     mc->update_stress(de, s_mc, ArrayView<double>(&state, 1));
     le.update_stress(de, s_le, ArrayView<double>());
     std::cout << "    sigma_xx = " << s_mc[0][0] << ", linear elastic "
               << s_le[0][0] << "; sigma_xy = " << s_mc[0][1]
-              << ", linear elastic " << s_le[0][1] << "; sigma_zz = "
-              << s_mc[2][2] << ", linear elastic " << s_le[2][2] << '\n';
+              << ", linear elastic " << s_le[0][1]
+              << "; sigma_zz = " << s_mc[2][2] << ", linear elastic "
+              << s_le[2][2] << '\n';
     std::cout << "    max |difference| = " << max_abs(s_mc - s_le)
               << ", plastic shear strain = " << state << '\n';
     check(max_abs(s_mc - s_le) == 0 && state == 0,
@@ -259,29 +262,29 @@ namespace
     std::cout << "(2) simple shear from p = -100 kPa, 200 steps of "
                  "gamma = 1e-3 (E 2 MPa, nu 0.3, phi 40, psi 0, c 0)\n";
     const Parameters p;
-    const auto       model = make_model(p);
-    const double     G     = p.E / (2 * (1 + p.nu));
+    const auto       model   = make_model(p);
+    const double     G       = p.E / (2 * (1 + p.nu));
     const double     sin_phi = std::sin(p.phi * M_PI / 180);
 
     SymmetricTensor<2, 3> stress = diagonal(-1e5, -1e5, -1e5);
     SymmetricTensor<2, 3> de;
-    de[0][1]                  = 0.5e-3;
-    double       state        = 0;
+    de[0][1]                   = 0.5e-3;
+    double       state         = 0;
     unsigned int first_plastic = 0;
     for (unsigned int step = 1; step <= 200; ++step)
-      {
-        model->update_stress(de, stress, ArrayView<double>(&state, 1));
-        if (state > 0 && first_plastic == 0)
-          first_plastic = step;
-      }
+    {
+      model->update_stress(de, stress, ArrayView<double>(&state, 1));
+      if (state > 0 && first_plastic == 0)
+        first_plastic = step;
+    }
     const auto   s   = principal(stress);
     const double tau = 1e5 * sin_phi;
     std::cout << "    first plastic step " << first_plastic
               << ", reference ceil(p sin(phi) / (G gamma)) = "
               << std::ceil(tau / G / 1e-3) << '\n';
     std::cout << "    principal stresses " << s[0] << ' ' << s[1] << ' ' << s[2]
-              << "; sigma_xy = " << stress[0][1] << ", reference -p sin(phi) = "
-              << tau << '\n';
+              << "; sigma_xy = " << stress[0][1]
+              << ", reference -p sin(phi) = " << tau << '\n';
     const double f_rel = yield(stress, p) / std::abs(mean(stress));
     std::cout << "    f / |p| = " << flush(f_rel) << '\n';
     check(std::abs(f_rel) < 1e-10, "on the yield surface");
@@ -305,21 +308,23 @@ namespace
   test_apex()
   {
     std::cout << "(3) apex return\n";
-    Parameters p;
-    const auto sand = make_model(p);
-    SymmetricTensor<2, 3> a = diagonal(1e4, 5e3, -2e3);
-    a[0][1]                 = 3e3;
-    a[1][2]                 = -1e3;
-    const SymmetricTensor<2, 3> trials[] = {
-      a, diagonal(1e4, 1e4, 1e4), diagonal(5e4, -1e3, -1e3)};
+    Parameters            p;
+    const auto            sand           = make_model(p);
+    SymmetricTensor<2, 3> a              = diagonal(1e4, 5e3, -2e3);
+    a[0][1]                              = 3e3;
+    a[1][2]                              = -1e3;
+    const SymmetricTensor<2, 3> trials[] = {a,
+                                            diagonal(1e4, 1e4, 1e4),
+                                            diagonal(5e4, -1e3, -1e3)};
     for (auto stress : trials)
-      {
-        const unsigned int set = active_set(*sand, stress);
-        return_stress(*sand, stress);
-        std::cout << "    c = 0, trial (" << set_name(set) << "): max |sigma_ij| = " << max_abs(stress)
-                  << ", reference 0\n";
-        check(max_abs(stress) == 0, "exactly zero stress");
-      }
+    {
+      const unsigned int set = active_set(*sand, stress);
+      return_stress(*sand, stress);
+      std::cout << "    c = 0, trial (" << set_name(set)
+                << "): max |sigma_ij| = " << max_abs(stress)
+                << ", reference 0\n";
+      check(max_abs(stress) == 0, "exactly zero stress");
+    }
     // A large tensile strain increment from a compressed state.
     SymmetricTensor<2, 3> stress = diagonal(-1e5, -1e5, -1e5), de;
     de[0][0]                     = 0.2;
@@ -331,10 +336,10 @@ namespace
               << max_abs(stress) << ", reference 0\n";
     check(max_abs(stress) == 0, "exactly zero stress");
 
-    p.c                  = 1e4;
-    p.T                  = 5e3;
-    const auto cohesive = make_model(p);
-    stress               = diagonal(1e5, 1e5, 1e5);
+    p.c                    = 1e4;
+    p.T                    = 5e3;
+    const auto cohesive    = make_model(p);
+    stress                 = diagonal(1e5, 1e5, 1e5);
     const unsigned int set = active_set(*cohesive, stress);
     return_stress(*cohesive, stress);
     std::cout << "    c = 10 kPa, T = 5 kPa (" << set_name(set)
@@ -358,15 +363,24 @@ namespace
       unsigned int          expected;
     };
     Parameters cohesive;
-    cohesive.c   = 2e4;
-    cohesive.T   = 1e4;
-    cohesive.psi = 10;
+    cohesive.c         = 2e4;
+    cohesive.T         = 1e4;
+    cohesive.psi       = 10;
     const Case cases[] = {
       {"triaxial compression", Parameters(), diagonal(-5e4, -5e4, -3e5), 1 | 4},
-      {"triaxial compression, far", Parameters(), diagonal(-1e4, -1e4, -1e6), 1 | 4},
+      {"triaxial compression, far",
+       Parameters(),
+       diagonal(-1e4, -1e4, -1e6),
+       1 | 4},
       {"triaxial extension", Parameters(), diagonal(-5e4, -3e5, -3e5), 1 | 2},
-      {"triaxial extension, far", Parameters(), diagonal(-1e4, -1e6, -1e6), 1 | 2},
-      {"compression, c = 20 kPa, psi = 10", cohesive, diagonal(0, 0, -3e5), 1 | 4},
+      {"triaxial extension, far",
+       Parameters(),
+       diagonal(-1e4, -1e6, -1e6),
+       1 | 2},
+      {"compression, c = 20 kPa, psi = 10",
+       cohesive,
+       diagonal(0, 0, -3e5),
+       1 | 4},
       {"tension plane, c = 20 kPa", cohesive, diagonal(3e4, 0, 0), 8},
       {"tension and main plane, c = 20 kPa",
        cohesive,
@@ -377,33 +391,34 @@ namespace
        diagonal(2e5, 5e4, -1e5),
        1 | 4 | 8}};
     for (const auto &c : cases)
-      {
-        const auto            model  = make_model(c.p);
-        SymmetricTensor<2, 3> stress = rotate(c.trial, R);
-        const unsigned int    set    = active_set(*model, stress);
-        return_stress(*model, stress);
-        const auto   s     = principal(stress);
-        const double scale = std::abs(mean(c.trial));
-        std::cout << "    " << c.name << ": " << set_name(set)
-                  << ", expected " << set_name(c.expected) << '\n'
-                  << "      principal stresses " << s[0] << ' ' << s[1] << ' '
-                  << s[2] << ", f / |p_trial| = "
-                  << flush(yield(stress, c.p) / scale) << '\n';
-        if (c.expected & 4)
-          std::cout << "      (s1 - s2) / |p_trial| = "
-                    << flush((s[0] - s[1]) / scale) << ", reference 0\n";
-        if (c.expected & 2)
-          std::cout << "      (s2 - s3) / |p_trial| = "
-                    << flush((s[1] - s[2]) / scale) << ", reference 0\n";
-        if (c.expected & 8)
-          std::cout << "      s1 = " << s[0] << ", reference T = " << c.p.T
-                    << '\n';
-        if (c.expected & 16)
-          std::cout << "      s2 = " << s[1] << ", reference T = " << c.p.T
-                    << '\n';
-        check(set == c.expected && std::abs(yield(stress, c.p)) < 1e-10 * scale,
-              "expected case, on the surface");
-      }
+    {
+      const auto            model  = make_model(c.p);
+      SymmetricTensor<2, 3> stress = rotate(c.trial, R);
+      const unsigned int    set    = active_set(*model, stress);
+      return_stress(*model, stress);
+      const auto   s     = principal(stress);
+      const double scale = std::abs(mean(c.trial));
+      std::cout << "    " << c.name << ": " << set_name(set) << ", expected "
+                << set_name(c.expected) << '\n'
+                << "      principal stresses " << s[0] << ' ' << s[1] << ' '
+                << s[2]
+                << ", f / |p_trial| = " << flush(yield(stress, c.p) / scale)
+                << '\n';
+      if (c.expected & 4)
+        std::cout << "      (s1 - s2) / |p_trial| = "
+                  << flush((s[0] - s[1]) / scale) << ", reference 0\n";
+      if (c.expected & 2)
+        std::cout << "      (s2 - s3) / |p_trial| = "
+                  << flush((s[1] - s[2]) / scale) << ", reference 0\n";
+      if (c.expected & 8)
+        std::cout << "      s1 = " << s[0] << ", reference T = " << c.p.T
+                  << '\n';
+      if (c.expected & 16)
+        std::cout << "      s2 = " << s[1] << ", reference T = " << c.p.T
+                  << '\n';
+      check(set == c.expected && std::abs(yield(stress, c.p)) < 1e-10 * scale,
+            "expected case, on the surface");
+    }
   }
 
 
@@ -411,17 +426,17 @@ namespace
   test_no_dilation()
   {
     std::cout << "(5) psi = 0: mean stress changes only elastically\n";
-    const Parameters p;
-    const auto       model = make_model(p);
-    const double     K     = p.E / (3 * (1 - 2 * p.nu));
+    const Parameters      p;
+    const auto            model = make_model(p);
+    const double          K     = p.E / (3 * (1 - 2 * p.nu));
     SymmetricTensor<2, 3> de;
-    de[0][0] = -1e-3;
-    de[1][1] = -2e-3;
-    de[0][1] = 0.05;
+    de[0][0]                     = -1e-3;
+    de[1][1]                     = -2e-3;
+    de[0][1]                     = 0.05;
     SymmetricTensor<2, 3> stress = diagonal(-1e5, -1e5, -1e5);
     SymmetricTensor<2, 3> trial =
-      stress + diagonal(1, 1, 1) * (K - 2. / 3 * p.E / (2 * (1 + p.nu))) *
-                 trace(de) +
+      stress +
+      diagonal(1, 1, 1) * (K - 2. / 3 * p.E / (2 * (1 + p.nu))) * trace(de) +
       p.E / (1 + p.nu) * de;
     const unsigned int set   = active_set(*model, trial);
     double             state = 0;
@@ -430,13 +445,13 @@ namespace
               << "; mean stress " << mean(stress)
               << ", elastic prediction -1e5 + K tr(de) = "
               << -1e5 + K * trace(de) << '\n';
-    check(state > 0 && std::abs(mean(stress) - (-1e5 + K * trace(de))) <
-                         1e-10 * 1e5,
+    check(state > 0 &&
+            std::abs(mean(stress) - (-1e5 + K * trace(de))) < 1e-10 * 1e5,
           "no plastic volume change");
 
     Parameters dilatant = p;
     dilatant.psi        = 10;
-    const auto   model2 = make_model(dilatant);
+    const auto model2   = make_model(dilatant);
     stress              = diagonal(-1e5, -1e5, -1e5);
     state               = 0;
     model2->update_stress(de, stress, ArrayView<double>(&state, 1));
@@ -465,40 +480,41 @@ namespace
     // mt19937 is specified bit for bit; the distributions of <random> are
     // not, so map its output to [a, b) by hand.
     std::mt19937 rng(42);
-    const auto   uniform = [&rng](const double a, const double b) {
-      return a + (b - a) * (rng() / 4294967296.);
-    };
+    const auto   uniform = [&rng](const double a, const double b)
+    { return a + (b - a) * (rng() / 4294967296.); };
 
     double max_f = 0, max_rotation = 0, max_repeat = 0;
     std::map<unsigned int, unsigned int> count;
     for (unsigned int n = 0; n < 10000; ++n)
-      {
-        const unsigned int    m = n % 3;
-        SymmetricTensor<2, 3> trial;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = i; j < 3; ++j)
-            trial[i][j] = uniform(-1e5, 1e5);
-        const double shift = uniform(-2e5, 1e5);
-        for (unsigned int i = 0; i < 3; ++i)
-          trial[i][i] += shift;
-        const double scale = max_abs(trial);
+    {
+      const unsigned int    m = n % 3;
+      SymmetricTensor<2, 3> trial;
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = i; j < 3; ++j)
+          trial[i][j] = uniform(-1e5, 1e5);
+      const double shift = uniform(-2e5, 1e5);
+      for (unsigned int i = 0; i < 3; ++i)
+        trial[i][i] += shift;
+      const double scale = max_abs(trial);
 
-        ++count[m * 1000 + active_set(*models[m], trial)];
-        SymmetricTensor<2, 3> stress = trial;
-        return_stress(*models[m], stress);
-        max_f = std::max(max_f, yield(stress, sets[m]) / scale);
+      ++count[m * 1000 + active_set(*models[m], trial)];
+      SymmetricTensor<2, 3> stress = trial;
+      return_stress(*models[m], stress);
+      max_f = std::max(max_f, yield(stress, sets[m]) / scale);
 
-        const Tensor<2, 3> R = rotation(
-          uniform(-1, 1), uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-        SymmetricTensor<2, 3> rotated = rotate(trial, R);
-        return_stress(*models[m], rotated);
-        max_rotation =
-          std::max(max_rotation, max_abs(rotated - rotate(stress, R)) / scale);
+      const Tensor<2, 3>    R       = rotation(uniform(-1, 1),
+                                      uniform(-1, 1),
+                                      uniform(-1, 1),
+                                      uniform(-1, 1));
+      SymmetricTensor<2, 3> rotated = rotate(trial, R);
+      return_stress(*models[m], rotated);
+      max_rotation =
+        std::max(max_rotation, max_abs(rotated - rotate(stress, R)) / scale);
 
-        SymmetricTensor<2, 3> again = stress;
-        return_stress(*models[m], again);
-        max_repeat = std::max(max_repeat, max_abs(again - stress));
-      }
+      SymmetricTensor<2, 3> again = stress;
+      return_stress(*models[m], again);
+      max_repeat = std::max(max_repeat, max_abs(again - stress));
+    }
     std::cout << "    max f / max|sigma_trial| = " << flush(max_f)
               << " (<= 1e-10 required)\n";
     check(max_f <= 1e-10, "all returned stresses admissible");
@@ -514,11 +530,11 @@ namespace
                  "psi = 10 | associated, T = c cot phi):\n";
     bool fallback = false;
     for (const auto &[key, n] : count)
-      {
-        std::cout << "      " << key / 1000 << ' ' << std::setw(32) << std::left
-                  << set_name(key % 1000) << std::right << n << '\n';
-        fallback = fallback || (key % 1000) & MohrCoulomb::fallback;
-      }
+    {
+      std::cout << "      " << key / 1000 << ' ' << std::setw(32) << std::left
+                << set_name(key % 1000) << std::right << n << '\n';
+      fallback = fallback || (key % 1000) & MohrCoulomb::fallback;
+    }
     check(!fallback, "no fallback");
   }
 
