@@ -1,0 +1,141 @@
+#ifndef mpm_materials_mohr_coulomb_h
+#define mpm_materials_mohr_coulomb_h
+
+#include <mpm/materials/material_model.h>
+
+#include <array>
+
+namespace MPM
+{
+  namespace MaterialModels
+  {
+    /**
+     * Linear elastic - perfectly plastic Mohr-Coulomb model with a tension
+     * cutoff (a Rankine limit on the largest principal stress) and
+     * non-associated flow through a dilation angle, for dry granular flow.
+     * Plane strain in 2D (the zz stress evolves like the others).
+     *
+     * With principal stresses sorted s1 >= s2 >= s3 (tension positive) the
+     * admissible set is
+     *   f  = (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi) <= 0,
+     *   s1 <= T,
+     * and the plastic potential of the shear planes is f with psi in place
+     * of phi, so that psi = 0 gives no plastic volume change. The tension
+     * cutoff flows associatively (it opens the material).
+     *
+     * The stress update is an elastic predictor followed by a return in
+     * principal stress space (de Souza Neto, Peric and Owen, Computational
+     * Methods for Plasticity, 2008, section 8.2). All surfaces are planes
+     * in principal stress space and there is no hardening, so for a given
+     * set of active surfaces the return is the solution of a linear system
+     * of at most 3 equations, without iterations: it is exact and stable
+     * however far outside the trial stress lies. The active set (main
+     * plane, one of the two edges, the tension plane, the corners and the
+     * apex) is found by trying the candidate sets from the fewest surfaces
+     * up and accepting the first whose multipliers are non-negative and
+     * whose stress is admissible and keeps the principal ordering; see
+     * return_principal() and doc/materials.md.
+     *
+     * State: the accumulated equivalent plastic shear strain
+     * sqrt(2/3 e_p : e_p) (e_p the deviatoric plastic strain increment),
+     * which shows where the material has yielded.
+     */
+    class MohrCoulomb : public MaterialModel
+    {
+    public:
+      /**
+       * The yield surfaces of the return in the sorted principal frame, as
+       * bits of the value return_principal() gives back. shear_13 is the
+       * main Mohr-Coulomb plane; shear_12 joins it along the triaxial
+       * extension edge (s2 = s3), shear_23 along the triaxial compression
+       * edge (s1 = s2). tension_i is s_i <= T.
+       */
+      enum Surface : unsigned int
+      {
+        shear_13  = 1,
+        shear_12  = 2,
+        shear_23  = 4,
+        tension_1 = 8,
+        tension_2 = 16,
+        tension_3 = 32,
+        /**
+         * No candidate set was acceptable and the stress was put on the
+         * apex of the admissible set. Never observed; reported so that
+         * the unit test can count it.
+         */
+        fallback = 64
+      };
+
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm) override;
+
+      void
+      update_stress(const SymmetricTensor<2, 3> &strain_increment,
+                    SymmetricTensor<2, 3>       &stress,
+                    const ArrayView<double>     &state) const override;
+
+      double
+      strain_energy_density(const SymmetricTensor<2, 3> &stress) const override;
+
+      double
+      p_wave_modulus() const override;
+
+      /**
+       * Jaky's 1 - sin(phi) for normally consolidated sand; the elastic
+       * nu / (1 - nu) would put a loose sand column at rest far from its
+       * real lateral stress.
+       */
+      double
+      default_k0() const override;
+
+      unsigned int
+      n_state_variables() const override;
+
+      std::vector<std::string>
+      state_variable_names() const override;
+
+      void
+      initialize_state(const ArrayView<double> &state) const override;
+
+      /**
+       * The return mapping in principal stress space: on input the trial
+       * principal stresses sorted s[0] >= s[1] >= s[2], on output the
+       * returned ones (still sorted). Returns 0 for an elastic step, else
+       * the Surface bits of the active set. Public so that the unit test
+       * can see which case was taken.
+       */
+      unsigned int
+      return_principal(std::array<double, 3> &s) const;
+
+    private:
+      double youngs_modulus = 0;
+      double poisson_ratio  = 0;
+      double friction_angle = 0; // radians
+      double dilation_angle = 0; // radians
+      double cohesion       = 0;
+      double tension_cutoff = 0;
+
+      double lambda        = 0;
+      double shear_modulus = 0;
+
+      /**
+       * The six surfaces f_k = a_k . s - b_k in the sorted principal frame,
+       * their elastic return directions r_k = D n_k (n_k the flow
+       * direction), and the candidate active sets in the order they are
+       * tried. Set up once in parse_parameters().
+       */
+      std::array<std::array<double, 3>, 6> gradient;
+      std::array<std::array<double, 3>, 6> return_direction;
+      std::array<double, 6>                bound;
+      std::vector<unsigned int>            candidate_sets;
+
+      void
+      setup_surfaces();
+    };
+  } // namespace MaterialModels
+} // namespace MPM
+
+#endif
