@@ -5,6 +5,7 @@
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
 
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -344,6 +345,12 @@ namespace MPM
           {
             max_v_error = std::max(max_v_error, std::abs(v_error));
             max_d_error = std::max(max_d_error, std::abs(d_error));
+            // Sums of the least-squares line v = v0 + a t over every step.
+            fit[0] += 1;
+            fit[1] += t;
+            fit[2] += t * t;
+            fit[3] += v;
+            fit[4] += t * v;
           }
         if (output_step)
           table << std::setw(10) << s.time << std::setw(14) << v
@@ -367,6 +374,21 @@ namespace MPM
                << (sticks ? "abs" : "relative")
                << " distance error for t >= " << error_from
                << " s: " << max_d_error << '\n';
+        // The slope separates the acceleration, which friction decides,
+        // from a constant velocity offset picked up in the first steps,
+        // whose relative error decays like 1/t.
+        const double det = fit[0] * fit[2] - fit[1] * fit[1];
+        if (fit[0] > 2 && det > 0)
+          {
+            const double slope  = (fit[0] * fit[4] - fit[1] * fit[3]) / det;
+            const double offset = (fit[3] - slope * fit[1]) / fit[0];
+            report << "least-squares fit v = v0 + a t over every step with t "
+                      ">= "
+                   << error_from << " s: a = " << slope << " m/s^2, "
+                   << (sticks ? "abs error " : "rel error ")
+                   << (sticks ? slope : (slope - acceleration) / acceleration)
+                   << "; v0 = " << offset << " m/s\n";
+          }
       }
 
     private:
@@ -374,6 +396,7 @@ namespace MPM
       std::string        bed;
       Point<dim>         x0;
       double             max_v_error = 0, max_d_error = 0;
+      std::array<double, 5> fit{};
       std::ostringstream table, report_header;
     };
 
