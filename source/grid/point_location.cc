@@ -14,24 +14,25 @@ namespace MPM
     constexpr double   interior_margin = 1e-8;
     PointLocation<dim> location;
     for (const auto &cell : candidates)
-    {
-      const auto result = inverse_mapping.transform_real_to_unit_cell(cell, x);
-      if (!result.success || !inside_unit_cell(result.xi, tolerance))
-        continue;
-      if (!location.found ||
-          cell->active_cell_index() < location.cell->active_cell_index())
       {
-        location.cell  = cell;
-        location.xi    = result.xi;
-        location.found = true;
+        const auto result =
+          inverse_mapping.transform_real_to_unit_cell(cell, x);
+        if (!result.success || !inside_unit_cell(result.xi, tolerance))
+          continue;
+        if (!location.found ||
+            cell->active_cell_index() < location.cell->active_cell_index())
+          {
+            location.cell  = cell;
+            location.xi    = result.xi;
+            location.found = true;
+          }
+        bool interior = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          interior = interior && result.xi[d] > interior_margin &&
+                     result.xi[d] < 1. - interior_margin;
+        if (interior)
+          return location;
       }
-      bool interior = true;
-      for (unsigned int d = 0; d < dim; ++d)
-        interior = interior && result.xi[d] > interior_margin &&
-                   result.xi[d] < 1. - interior_margin;
-      if (interior)
-        return location;
-    }
     return location;
   }
 

@@ -142,7 +142,7 @@ namespace
   {
   public:
     explicit Methods(const Vertices &vertices)
-        : vertices(vertices)
+      : vertices(vertices)
     {
       GridGenerator::general_cell(triangulation,
                                   std::vector<Point<2>>(vertices.begin(),
@@ -165,18 +165,18 @@ namespace
     operator()(const unsigned int m, const Point<2> &x) const
     {
       switch (m)
-      {
-        case 0:
-          return inverse_map_closed_form(vertices, x);
-        case 1:
-          return inverse_map_closed_form(vertices, x, false);
-        case 2:
-          return inverse_map_newton<2>(vertices, x);
-        default:
-          return inverse_map_dealii<2>(mapping,
-                                       triangulation.begin_active(),
-                                       x);
-      }
+        {
+          case 0:
+            return inverse_map_closed_form(vertices, x);
+          case 1:
+            return inverse_map_closed_form(vertices, x, false);
+          case 2:
+            return inverse_map_newton<2>(vertices, x);
+          default:
+            return inverse_map_dealii<2>(mapping,
+                                         triangulation.begin_active(),
+                                         x);
+        }
     }
 
   private:
@@ -199,114 +199,115 @@ namespace
     std::mt19937_64       generator(42);
     std::vector<Point<2>> xi_exact(n_points), x(n_points);
     for (unsigned int k = 0; k < n_points; ++k)
-    {
-      xi_exact[k] = Point<2>(uniform(generator), uniform(generator));
-      x[k]        = map_unit_to_real(v, xi_exact[k]);
-    }
+      {
+        xi_exact[k] = Point<2>(uniform(generator), uniform(generator));
+        x[k]        = map_unit_to_real(v, xi_exact[k]);
+      }
 
     std::vector<std::vector<Point<2>>> xi(Methods::n,
                                           std::vector<Point<2>>(n_points));
     for (unsigned int m = 0; m < Methods::n; ++m)
-    {
-      double       error_xi = 0, error_x = 0;
-      unsigned int failures = 0;
-      for (unsigned int k = 0; k < n_points; ++k)
       {
-        const auto result = methods(m, x[k]);
-        xi[m][k]          = result.xi;
-        if (!result.success)
-        {
-          ++failures;
-          continue;
-        }
-        for (unsigned int d = 0; d < 2; ++d)
-          error_xi =
-            std::max(error_xi, std::abs(result.xi[d] - xi_exact[k][d]));
-        error_x =
-          std::max(error_x, map_unit_to_real(v, result.xi).distance(x[k]) / h);
+        double       error_xi = 0, error_x = 0;
+        unsigned int failures = 0;
+        for (unsigned int k = 0; k < n_points; ++k)
+          {
+            const auto result = methods(m, x[k]);
+            xi[m][k]          = result.xi;
+            if (!result.success)
+              {
+                ++failures;
+                continue;
+              }
+            for (unsigned int d = 0; d < 2; ++d)
+              error_xi =
+                std::max(error_xi, std::abs(result.xi[d] - xi_exact[k][d]));
+            error_x =
+              std::max(error_x,
+                       map_unit_to_real(v, result.xi).distance(x[k]) / h);
+          }
+        std::cout << "  " << Methods::name(m) << ": |xi(x(xi)) - xi| "
+                  << verdict(error_xi) << ", |x(xi(x)) - x|/h "
+                  << verdict(error_x) << ", failures " << failures << '\n';
       }
-      std::cout << "  " << Methods::name(m) << ": |xi(x(xi)) - xi| "
-                << verdict(error_xi) << ", |x(xi(x)) - x|/h "
-                << verdict(error_x) << ", failures " << failures << '\n';
-    }
 
     // Agreement between methods (the closed form with polish against the
     // others).
     for (unsigned int m = 1; m < Methods::n; ++m)
-    {
-      double difference = 0;
-      for (unsigned int k = 0; k < n_points; ++k)
-        for (unsigned int d = 0; d < 2; ++d)
-          difference =
-            std::max(difference, std::abs(xi[0][k][d] - xi[m][k][d]));
-      std::cout << "  closed form vs " << Methods::name(m) << ": "
-                << verdict(difference) << '\n';
-    }
+      {
+        double difference = 0;
+        for (unsigned int k = 0; k < n_points; ++k)
+          for (unsigned int d = 0; d < 2; ++d)
+            difference =
+              std::max(difference, std::abs(xi[0][k][d] - xi[m][k][d]));
+        std::cout << "  closed form vs " << Methods::name(m) << ": "
+                  << verdict(difference) << '\n';
+      }
 
     // Points on edges and vertices: reference points with one coordinate 0
     // or 1, mapped to real space (vertices exactly).
     std::vector<Point<2>> on_boundary;
     std::vector<Point<2>> on_boundary_xi;
     for (unsigned int i = 0; i < 4; ++i)
-    {
-      on_boundary.push_back(v[i]);
-      on_boundary_xi.push_back(Point<2>(i & 1, (i >> 1) & 1));
-    }
+      {
+        on_boundary.push_back(v[i]);
+        on_boundary_xi.push_back(Point<2>(i & 1, (i >> 1) & 1));
+      }
     for (const double s : {1e-10, 0.25, 1. / 3, 0.5, 0.9, 1 - 1e-10})
       for (unsigned int face = 0; face < 4; ++face)
-      {
-        // face 0: xi = 0, 1: xi = 1, 2: eta = 0, 3: eta = 1
-        const Point<2> p =
-          (face < 2) ? Point<2>(face, s) : Point<2>(s, face - 2);
-        on_boundary_xi.push_back(p);
-        on_boundary.push_back(map_unit_to_real(v, p));
-      }
+        {
+          // face 0: xi = 0, 1: xi = 1, 2: eta = 0, 3: eta = 1
+          const Point<2> p =
+            (face < 2) ? Point<2>(face, s) : Point<2>(s, face - 2);
+          on_boundary_xi.push_back(p);
+          on_boundary.push_back(map_unit_to_real(v, p));
+        }
     // Points 1e-8 h outside each edge, along the outward normal of the
     // (straight) edge.
     std::vector<Point<2>> outside;
     const unsigned int edge_vertices[4][2] = {{0, 2}, {3, 1}, {1, 0}, {2, 3}};
     for (unsigned int face = 0; face < 4; ++face)
-    {
-      const Point<2>     a = v[edge_vertices[face][0]];
-      const Point<2>     b = v[edge_vertices[face][1]];
-      const Tensor<1, 2> t = b - a;
-      // Counter-clockwise cell, edges traversed clockwise: outward normal
-      // is the tangent rotated by +90 degrees.
-      Tensor<1, 2> normal;
-      normal[0] = -t[1] / t.norm();
-      normal[1] = t[0] / t.norm();
-      for (const double s : {0., 0.1, 0.5, 0.9, 1.})
-        outside.push_back(a + s * t + 1e-8 * h * normal);
-    }
+      {
+        const Point<2>     a = v[edge_vertices[face][0]];
+        const Point<2>     b = v[edge_vertices[face][1]];
+        const Tensor<1, 2> t = b - a;
+        // Counter-clockwise cell, edges traversed clockwise: outward normal
+        // is the tangent rotated by +90 degrees.
+        Tensor<1, 2> normal;
+        normal[0] = -t[1] / t.norm();
+        normal[1] = t[0] / t.norm();
+        for (const double s : {0., 0.1, 0.5, 0.9, 1.})
+          outside.push_back(a + s * t + 1e-8 * h * normal);
+      }
 
     for (unsigned int m = 0; m < Methods::n; ++m)
-    {
-      unsigned int n_inside       = 0;
-      double       boundary_error = 0;
-      for (unsigned int k = 0; k < on_boundary.size(); ++k)
       {
-        const auto result = methods(m, on_boundary[k]);
-        if (result.success && inside_unit_cell(result.xi))
-          ++n_inside;
-        for (unsigned int d = 0; d < 2; ++d)
-          if (on_boundary_xi[k][d] == 0 || on_boundary_xi[k][d] == 1)
-            boundary_error =
-              std::max(boundary_error,
-                       std::abs(result.xi[d] - on_boundary_xi[k][d]));
+        unsigned int n_inside       = 0;
+        double       boundary_error = 0;
+        for (unsigned int k = 0; k < on_boundary.size(); ++k)
+          {
+            const auto result = methods(m, on_boundary[k]);
+            if (result.success && inside_unit_cell(result.xi))
+              ++n_inside;
+            for (unsigned int d = 0; d < 2; ++d)
+              if (on_boundary_xi[k][d] == 0 || on_boundary_xi[k][d] == 1)
+                boundary_error =
+                  std::max(boundary_error,
+                           std::abs(result.xi[d] - on_boundary_xi[k][d]));
+          }
+        unsigned int n_outside = 0;
+        for (const auto &p : outside)
+          {
+            const auto result = methods(m, p);
+            if (!(result.success && inside_unit_cell(result.xi)))
+              ++n_outside;
+          }
+        std::cout << "  " << Methods::name(m) << ": on edges/vertices "
+                  << n_inside << " of " << on_boundary.size()
+                  << " inside, boundary coordinate " << verdict(boundary_error)
+                  << "; 1e-8 h outside: " << n_outside << " of "
+                  << outside.size() << " outside\n";
       }
-      unsigned int n_outside = 0;
-      for (const auto &p : outside)
-      {
-        const auto result = methods(m, p);
-        if (!(result.success && inside_unit_cell(result.xi)))
-          ++n_outside;
-      }
-      std::cout << "  " << Methods::name(m) << ": on edges/vertices "
-                << n_inside << " of " << on_boundary.size()
-                << " inside, boundary coordinate " << verdict(boundary_error)
-                << "; 1e-8 h outside: " << n_outside << " of " << outside.size()
-                << " outside\n";
-    }
   }
 } // namespace
 
@@ -318,13 +319,13 @@ main()
     std::cout << "parse '" << name << "' -> '"
               << to_string(parse_inverse_mapping_type(name)) << "'\n";
   try
-  {
-    parse_inverse_mapping_type("Newton");
-  }
+    {
+      parse_inverse_mapping_type("Newton");
+    }
   catch (const InputError &error)
-  {
-    std::cout << "parse 'Newton': " << error.what() << '\n';
-  }
+    {
+      std::cout << "parse 'Newton': " << error.what() << '\n';
+    }
 
   for (const auto &shape : shapes())
     test_shape(shape);
