@@ -10,6 +10,10 @@
 // 1e-12 and their order of magnitude only; numdiff's default absolute
 // tolerance (1e-10) lets the magnitude differ between machines while the
 // pass/fail text must match.
+//
+// One FAIL is expected and kept: deal.II 9.4's MappingQ1 puts the edge point
+// xi = (1, 1 - 1e-10) of the rotated distorted cell 1.6e-12 outside the cell
+// (see doc/point_location.md); the closed form and Newton do not.
 
 #include <deal.II/fe/mapping_q1.h>
 
