@@ -1,7 +1,9 @@
 # Runs one regression test and compares its output with the expected one.
 #  - prm tests (PRM set): `mpm [BASE] PRM --set "Output/Directory=WORKDIR"`
 #    (BASE from a line "# base: FILE" in PRM); compares WORKDIR/report.txt
-#    with EXPECTED, or with the file named by "# expected output: FILE". Tests whose name starts with bad_input_
+#    with EXPECTED, or with the file named by "# expected output: FILE".
+#    Tests named bad_input_* or error_* must stop with a non-zero exit code;
+#    their stderr is compared instead. Tests whose name starts with bad_input_
 #    must fail with a non-zero exit code; their stderr is compared instead.
 #  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
 # Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
@@ -44,7 +46,7 @@ if(PRM)
     RESULT_VARIABLE _rc
     OUTPUT_FILE ${WORKDIR}/screen.txt
     ERROR_VARIABLE _stderr)
-  if(_name MATCHES "^bad_input_")
+  if(_name MATCHES "^(bad_input|error)_")
     if(_rc EQUAL 0)
       message(FATAL_ERROR "${_name}: expected a non-zero exit code, got 0")
     endif()
