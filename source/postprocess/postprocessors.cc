@@ -382,12 +382,13 @@ namespace MPM
           {
             const double slope  = (fit[0] * fit[4] - fit[1] * fit[3]) / det;
             const double offset = (fit[3] - slope * fit[1]) / fit[0];
-            report << "least-squares fit v = v0 + a t over every step with t "
-                      ">= "
-                   << error_from << " s: a = " << slope << " m/s^2, "
-                   << (sticks ? "abs error " : "rel error ")
+            report << "least-squares fit v = v0 + a t over every step with "
+                      "t >= "
+                   << error_from << " s:\nfitted a (m/s^2): " << slope
+                   << (sticks ? "\nfitted a abs error (m/s^2): " :
+                                "\nfitted a rel error: ")
                    << (sticks ? slope : (slope - acceleration) / acceleration)
-                   << "; v0 = " << offset << " m/s\n";
+                   << "\nfitted v0 (m/s): " << offset << '\n';
           }
       }
 

@@ -59,6 +59,7 @@ namespace MPM
                       "and their mass are reported in the statistics file "
                       "and at the end of the run.");
     prm.leave_subsection();
+    PointRelocation<dim>::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
@@ -100,6 +101,7 @@ namespace MPM
     prm.enter_subsection("Material points");
     error_on_lost_points = prm.get("Points leaving the mesh") == "error";
     prm.leave_subsection();
+    point_relocation.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     output_writer.parse_parameters(prm);
@@ -137,6 +139,7 @@ namespace MPM
     output_writer.initialize(mpi_communicator);
     grid.create();
     boundary_conditions.check_boundary_ids(grid);
+    point_relocation.initialize(grid);
 
     const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
       grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
@@ -548,7 +551,7 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "locate points");
     const auto n_lost_before = n_lost_points;
-    particle_handler.sort_particles_into_subdomains_and_cells();
+    point_relocation.relocate(particle_handler);
     const auto n_new_lost =
       Utilities::MPI::sum(n_lost_points - n_lost_before, mpi_communicator);
     if (n_new_lost > 0 && error_on_lost_points)

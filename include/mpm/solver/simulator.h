@@ -12,6 +12,7 @@
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/grid/q1_shape_functions.h>
 #include <mpm/material_points/point_generator.h>
+#include <mpm/material_points/point_relocation.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/output/output_writer.h>
 #include <mpm/postprocess/postprocessor.h>
@@ -218,6 +219,7 @@ namespace MPM
     BackgroundGrid<dim>             grid;
     MaterialLibrary                 materials;
     PointGenerator<dim>             point_generator;
+    PointRelocation<dim>            point_relocation;
     BoundaryConditions<dim>         boundary_conditions;
     TimeSteppingParameters<dim>     time_stepping;
     OutputWriter<dim>               output_writer;

@@ -1,0 +1,101 @@
+#ifndef mpm_material_points_point_relocation_h
+#define mpm_material_points_point_relocation_h
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <deal.II/grid/grid_tools_cache.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/background_grid.h>
+#include <mpm/grid/inverse_mapping.h>
+
+#include <memory>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * Finds every material point's cell and reference coordinates after the
+   * points moved: the per-step point location of the MPM.
+   *
+   * deal.II's ParticleHandler::sort_particles_into_subdomains_and_cells()
+   * inverse-maps every point through deal.II's mapping and rebuilds the
+   * particle storage on every call. Most points stay in their cell from one
+   * step to the next, so the 'incremental' method (the default) instead
+   *  1. inverse-maps each point in its old cell with the selected inverse
+   *     mapping (by default the closed form for bilinear quadrilaterals) and
+   *     stores the new reference coordinates in place if the point is still
+   *     inside (within reference_cell_tolerance: a point on an edge or
+   *     vertex stays in the cell it was in);
+   *  2. looks for each point that left its cell among the cells that share
+   *     a vertex with the old cell (locate_point(): the lowest active cell
+   *     index wins among the cells that contain it), then in the whole mesh;
+   *  3. moves only those points (remove and insert in the ParticleHandler,
+   *     which stays the store of the points).
+   * If any point, on any rank, left the locally owned cells or the mesh,
+   * the step falls back to sort_particles_into_subdomains_and_cells(),
+   * which sends points to other ranks and reports lost points through the
+   * particle_lost signal, so that no point is ever lost silently.
+   *
+   * 'sort' always calls deal.II's function, for comparison.
+   */
+  template <int dim>
+  class PointRelocation
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Read the entries of the subsection "Material points".
+     */
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Build the vertex-to-cell map and the inverse mapping for @p grid.
+     * Call again after the mesh changes.
+     */
+    void
+    initialize(const BackgroundGrid<dim> &grid);
+
+    /**
+     * Update the cells and reference locations of all points of
+     * @p particle_handler after their positions changed.
+     */
+    void
+    relocate(Particles::ParticleHandler<dim> &particle_handler);
+
+    /**
+     * What relocate() did so far, summed over the calls (this rank).
+     */
+    struct Statistics
+    {
+      unsigned long long n_points_mapped = 0;
+      unsigned long long n_points_moved  = 0;
+      unsigned long long n_full_sorts    = 0;
+    };
+
+    const Statistics &
+    statistics() const
+    {
+      return stats;
+    }
+
+  private:
+    using CellIterator = typename Triangulation<dim>::active_cell_iterator;
+
+    bool                                   incremental = true;
+    InverseMappingType                     inverse_type = InverseMappingType::closed_form;
+    std::unique_ptr<InverseMapping<dim>>   inverse_mapping;
+    const BackgroundGrid<dim>             *grid = nullptr;
+    std::vector<std::vector<CellIterator>> cells_at_vertex;
+    std::unique_ptr<GridTools::Cache<dim>> cache;
+    Statistics                             stats;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,188 @@
+#include <deal.II/base/mpi.h>
+
+#include <deal.II/grid/grid_tools.h>
+
+#include <mpm/grid/point_location.h>
+#include <mpm/material_points/point_relocation.h>
+
+#include <algorithm>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  PointRelocation<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material points");
+    prm.declare_entry(
+      "Point location",
+      "incremental",
+      Patterns::Selection("incremental|sort"),
+      "How points are found in the mesh after each step: 'incremental' "
+      "updates each point's reference coordinates in its old cell and moves "
+      "only the points that left it (falling back to deal.II's full sort "
+      "when a point leaves this rank's cells or the mesh); 'sort' calls "
+      "ParticleHandler::sort_particles_into_subdomains_and_cells() every "
+      "step. Both give the same cells and coordinates to round-off.");
+    prm.declare_entry("Inverse mapping",
+                      dim == 2 ? "closed form" : "newton",
+                      Patterns::Selection(inverse_mapping_type_selection()),
+                      "Inverse of the isoparametric map used by 'Point "
+                      "location = incremental': 'closed form' (bilinear "
+                      "quadrilaterals, 2D only; doc/point_location.md), "
+                      "'newton', or deal.II's MappingQ1 ('deal.II').");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PointRelocation<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material points");
+    incremental  = prm.get("Point location") == "incremental";
+    inverse_type = parse_inverse_mapping_type(prm.get("Inverse mapping"));
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PointRelocation<dim>::initialize(const BackgroundGrid<dim> &background_grid)
+  {
+    grid            = &background_grid;
+    inverse_mapping = std::make_unique<InverseMapping<dim>>(inverse_type,
+                                                            grid->mapping);
+    cache           = std::make_unique<GridTools::Cache<dim>>(
+      grid->triangulation, grid->mapping);
+    const auto sets = GridTools::vertex_to_cell_map(grid->triangulation);
+    cells_at_vertex.assign(sets.size(), {});
+    for (unsigned int v = 0; v < sets.size(); ++v)
+      cells_at_vertex[v].assign(sets[v].begin(), sets[v].end());
+  }
+
+
+  template <int dim>
+  void
+  PointRelocation<dim>::relocate(
+    Particles::ParticleHandler<dim> &particle_handler)
+  {
+    const MPI_Comm comm = grid->triangulation.get_communicator();
+    if (!incremental)
+      {
+        particle_handler.sort_particles_into_subdomains_and_cells();
+        ++stats.n_full_sorts;
+        return;
+      }
+
+    struct Move
+    {
+      Point<dim>            location;
+      Point<dim>            reference_location;
+      types::particle_index id;
+      CellIterator          cell;
+      unsigned int          first_property;
+    };
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+                        leavers;
+    std::vector<Move>   moves;
+    std::vector<double> properties;
+    bool                need_full_sort = false;
+
+    // 1. Every point in its old cell, cell by cell.
+    std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
+    const bool by_vertices = inverse_type != InverseMappingType::dealii;
+    for (auto it = particle_handler.begin(); it != particle_handler.end();)
+      {
+        const CellIterator cell   = it->get_surrounding_cell();
+        const auto         points = particle_handler.particles_in_cell(cell);
+        for (const unsigned int v : cell->vertex_indices())
+          vertices[v] = cell->vertex(v);
+        for (auto point = points.begin(); point != points.end(); ++point)
+          {
+            const Point<dim> x = point->get_location();
+            const auto       result =
+              by_vertices ?
+                      inverse_mapping->transform_real_to_unit_cell(vertices, x) :
+                      inverse_mapping->transform_real_to_unit_cell(cell, x);
+            if (result.success && inside_unit_cell(result.xi))
+              point->set_reference_location(result.xi);
+            else
+              leavers.push_back(point);
+          }
+        stats.n_points_mapped += particle_handler.n_particles_in_cell(cell);
+        it = points.end();
+      }
+
+    // 2. The points that left: first the cells around the old one, then
+    //    the whole mesh.
+    std::vector<CellIterator> candidates;
+    for (const auto &point : leavers)
+      {
+        const CellIterator old_cell = point->get_surrounding_cell();
+        const Point<dim>   x        = point->get_location();
+        candidates.clear();
+        for (const unsigned int v : old_cell->vertex_indices())
+          for (const auto &c : cells_at_vertex[old_cell->vertex_index(v)])
+            if (c != old_cell &&
+                std::find(candidates.begin(), candidates.end(), c) ==
+                  candidates.end())
+              candidates.push_back(c);
+        PointLocation<dim> location =
+          locate_point(*inverse_mapping, candidates, x);
+        if (!location.found)
+          {
+            const auto found = GridTools::find_active_cell_around_point(
+              *cache, x, old_cell, {}, reference_cell_tolerance);
+            if (found.first.state() == IteratorState::valid)
+              {
+                location.cell  = found.first;
+                location.xi    = found.second;
+                location.found = true;
+              }
+          }
+        if (!location.found || !location.cell->is_locally_owned())
+          {
+            need_full_sort = true;
+            break;
+          }
+        moves.push_back({x,
+                         location.xi,
+                         point->get_id(),
+                         location.cell,
+                         static_cast<unsigned int>(properties.size())});
+        const auto p = point->get_properties();
+        properties.insert(properties.end(), p.begin(), p.end());
+      }
+
+    // 3. Points that left this rank's cells or the mesh: deal.II moves them
+    //    to their rank or reports them lost.
+    if (Utilities::MPI::logical_or(need_full_sort, comm))
+      {
+        particle_handler.sort_particles_into_subdomains_and_cells();
+        ++stats.n_full_sorts;
+        return;
+      }
+    if (leavers.empty())
+      return;
+    const unsigned int n_properties =
+      particle_handler.n_properties_per_particle();
+    particle_handler.remove_particles(leavers);
+    for (const auto &m : moves)
+      particle_handler.insert_particle(
+        m.location,
+        m.reference_location,
+        m.id,
+        m.cell,
+        ArrayView<const double>(properties.data() + m.first_property,
+                                n_properties));
+    // insert_particle() does not update the number of points that
+    // remove_particles() decreased.
+    particle_handler.update_cached_numbers();
+    stats.n_points_moved += moves.size();
+  }
+
+
+  template class PointRelocation<2>;
+  template class PointRelocation<3>;
+} // namespace MPM
