@@ -66,6 +66,16 @@ namespace MPM
                         "Number of times every cell is split into 2^dim "
                         "children after the mesh is read or generated.");
       prm.declare_entry(
+        "Random vertex perturbation",
+        "0",
+        Patterns::Double(0, 0.45),
+        "Move every interior vertex by a random vector of length up to this "
+        "fraction of its shortest adjacent edge (GridTools::distort_random, "
+        "fixed seed, boundary vertices kept), after the global refinements: "
+        "a mesh of irregular quadrilaterals from any mesh, to test that "
+        "results do not depend on the cells' shape. 0.3 gives interior "
+        "angles between roughly 40 and 140 degrees.");
+      prm.declare_entry(
         "Scene rotation angle",
         "0",
         Patterns::Double(-360, 360),
@@ -94,6 +104,7 @@ namespace MPM
       generator_arguments  = prm.get("Generator arguments");
       n_global_refinements = prm.get_integer("Global refinements");
       rotation_angle = prm.get_double("Scene rotation angle") * M_PI / 180;
+      vertex_perturbation = prm.get_double("Random vertex perturbation");
     }
     prm.leave_subsection();
     if (source == "gmsh")
@@ -146,6 +157,8 @@ namespace MPM
           }
       }
     triangulation.refine_global(n_global_refinements);
+    if (vertex_perturbation > 0)
+      GridTools::distort_random(vertex_perturbation, triangulation, true);
 
     rotation = unit_symmetric_tensor<dim>();
     if (rotation_angle != 0)

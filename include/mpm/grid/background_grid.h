@@ -131,6 +131,9 @@ namespace MPM
     std::string  generator_name;
     std::string  generator_arguments;
     unsigned int n_global_refinements = 0;
+    /// Fraction of the shortest adjacent edge by which interior vertices
+    /// are moved at random.
+    double vertex_perturbation = 0;
     /// Scene rotation angle (radians) and its matrix.
     double         rotation_angle = 0;
     Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
