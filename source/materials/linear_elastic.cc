@@ -8,32 +8,14 @@ namespace MPM
     void
     LinearElastic::declare_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Young's modulus",
-                        "1e6",
-                        Patterns::Double(0),
-                        "Young's modulus E in Pa; must be > 0.");
-      prm.declare_entry("Poisson's ratio",
-                        "0.3",
-                        Patterns::Double(-1, 0.5),
-                        "Poisson's ratio nu, in (-1, 0.5).");
+      IsotropicElasticity::declare_parameters(prm);
     }
 
 
     void
     LinearElastic::parse_parameters(ParameterHandler &prm)
     {
-      youngs_modulus = prm.get_double("Young's modulus");
-      poisson_ratio  = prm.get_double("Poisson's ratio");
-      check_input(youngs_modulus > 0,
-                  "Linear elastic/Young's modulus = " +
-                    std::to_string(youngs_modulus) + " Pa: must be > 0.");
-      check_input(poisson_ratio > -1 && poisson_ratio < 0.5,
-                  "Linear elastic/Poisson's ratio = " +
-                    std::to_string(poisson_ratio) +
-                    ": must lie in (-1, 0.5); 0.5 would be incompressible.");
-      shear_modulus = youngs_modulus / (2 * (1 + poisson_ratio));
-      lambda        = youngs_modulus * poisson_ratio /
-               ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+      elasticity.parse_parameters(prm, "linear elastic");
     }
 
 
@@ -42,8 +24,7 @@ namespace MPM
                                  SymmetricTensor<2, 3>       &stress,
                                  const ArrayView<double> &) const
     {
-      stress += lambda * trace(strain_increment) * unit_symmetric_tensor<3>() +
-                2 * shear_modulus * strain_increment;
+      stress += elasticity.stress(strain_increment);
     }
 
 
@@ -51,25 +32,21 @@ namespace MPM
     LinearElastic::strain_energy_density(
       const SymmetricTensor<2, 3> &stress) const
     {
-      // 1/2 sigma : C^{-1} : sigma with
-      // C^{-1} sigma = (1+nu)/E sigma - nu/E tr(sigma) I.
-      const double tr = trace(stress);
-      return 0.5 * ((1 + poisson_ratio) / youngs_modulus * (stress * stress) -
-                    poisson_ratio / youngs_modulus * tr * tr);
+      return elasticity.strain_energy_density(stress);
     }
 
 
     double
     LinearElastic::p_wave_modulus() const
     {
-      return lambda + 2 * shear_modulus;
+      return elasticity.p_wave_modulus();
     }
 
 
     double
     LinearElastic::default_k0() const
     {
-      return poisson_ratio / (1 - poisson_ratio);
+      return elasticity.poisson_ratio / (1 - elasticity.poisson_ratio);
     }
   } // namespace MaterialModels
 } // namespace MPM

@@ -80,14 +80,7 @@ namespace MPM
     void
     MohrCoulomb::declare_parameters(ParameterHandler &prm)
     {
-      prm.declare_entry("Young's modulus",
-                        "1e6",
-                        Patterns::Double(0),
-                        "Young's modulus E in Pa; must be > 0.");
-      prm.declare_entry("Poisson's ratio",
-                        "0.3",
-                        Patterns::Double(-1, 0.5),
-                        "Poisson's ratio nu, in (-1, 0.5).");
+      IsotropicElasticity::declare_parameters(prm);
       prm.declare_entry("Friction angle",
                         "30",
                         Patterns::Double(0, 90),
@@ -116,20 +109,12 @@ namespace MPM
     void
     MohrCoulomb::parse_parameters(ParameterHandler &prm)
     {
-      youngs_modulus           = prm.get_double("Young's modulus");
-      poisson_ratio            = prm.get_double("Poisson's ratio");
+      elasticity.parse_parameters(prm, "mohr coulomb");
       const double phi_degrees = prm.get_double("Friction angle");
       const double psi_degrees = prm.get_double("Dilation angle");
       cohesion                 = prm.get_double("Cohesion");
       tension_cutoff           = prm.get_double("Tension cutoff");
 
-      check_input(youngs_modulus > 0,
-                  name_of("Young's modulus") + " = " +
-                    std::to_string(youngs_modulus) + " Pa: must be > 0.");
-      check_input(poisson_ratio > -1 && poisson_ratio < 0.5,
-                  name_of("Poisson's ratio") + " = " +
-                    std::to_string(poisson_ratio) +
-                    ": must lie in (-1, 0.5); 0.5 would be incompressible.");
       check_input(phi_degrees > 0 && phi_degrees < 90,
                   name_of("Friction angle") + " = " +
                     std::to_string(phi_degrees) +
@@ -158,9 +143,6 @@ namespace MPM
           " Pa], the apex of the Mohr-Coulomb surface.");
       tension_cutoff = std::min(tension_cutoff, apex);
 
-      shear_modulus = youngs_modulus / (2 * (1 + poisson_ratio));
-      lambda        = youngs_modulus * poisson_ratio /
-               ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
       setup_surfaces();
     }
 
@@ -191,7 +173,8 @@ namespace MPM
         bound[s]        = (s < 3) ? k : tension_cutoff;
         const double tr = flow[s][0] + flow[s][1] + flow[s][2];
         for (unsigned int i = 0; i < 3; ++i)
-          return_direction[s][i] = lambda * tr + 2 * shear_modulus * flow[s][i];
+          return_direction[s][i] =
+            elasticity.lambda * tr + 2 * elasticity.shear_modulus * flow[s][i];
       }
 
       // Candidate sets of at most three surfaces (three independent planes
@@ -233,7 +216,7 @@ namespace MPM
 
       // A multiplier is a strain: compare it with the tolerance divided by
       // the stiffness.
-      const double multiplier_tol = tol / (lambda + 2 * shear_modulus);
+      const double multiplier_tol = tol / elasticity.p_wave_modulus();
 
       for (const unsigned int set : candidate_sets)
       {
@@ -313,12 +296,10 @@ namespace MPM
                                const ArrayView<double>     &state) const
     {
       AssertIndexRange(0, state.size());
-      // Bracketed like LinearElastic, so that an elastic step gives the
-      // same stress to the last bit.
+      // The same elastic predictor as LinearElastic, so that an elastic
+      // step gives the same stress to the last bit.
       const SymmetricTensor<2, 3> trial =
-        stress +
-        (lambda * trace(strain_increment) * unit_symmetric_tensor<3>() +
-         2 * shear_modulus * strain_increment);
+        stress + elasticity.stress(strain_increment);
 
       // The QL decomposition rather than the closed-form eigenvalues():
       // the latter loses half the digits when two principal stresses
@@ -350,8 +331,9 @@ namespace MPM
       const double          tr_ds = ds[0] + ds[1] + ds[2];
       std::array<double, 3> de;
       for (unsigned int i = 0; i < 3; ++i)
-        de[i] = ((1 + poisson_ratio) * ds[i] - poisson_ratio * tr_ds) /
-                youngs_modulus;
+        de[i] = ((1 + elasticity.poisson_ratio) * ds[i] -
+                 elasticity.poisson_ratio * tr_ds) /
+                elasticity.youngs_modulus;
       const double mean = (de[0] + de[1] + de[2]) / 3;
       double       e2   = 0;
       for (unsigned int i = 0; i < 3; ++i)
@@ -364,17 +346,14 @@ namespace MPM
     MohrCoulomb::strain_energy_density(
       const SymmetricTensor<2, 3> &stress) const
     {
-      // 1/2 sigma : C^{-1} : sigma, the elastic energy of the current stress.
-      const double tr = trace(stress);
-      return 0.5 * ((1 + poisson_ratio) / youngs_modulus * (stress * stress) -
-                    poisson_ratio / youngs_modulus * tr * tr);
+      return elasticity.strain_energy_density(stress);
     }
 
 
     double
     MohrCoulomb::p_wave_modulus() const
     {
-      return lambda + 2 * shear_modulus;
+      return elasticity.p_wave_modulus();
     }
 
 

@@ -1,6 +1,7 @@
 #ifndef mpm_materials_linear_elastic_h
 #define mpm_materials_linear_elastic_h
 
+#include <mpm/materials/isotropic_elasticity.h>
 #include <mpm/materials/material_model.h>
 
 namespace MPM
@@ -35,10 +36,7 @@ namespace MPM
       default_k0() const override;
 
     private:
-      double youngs_modulus = 0;
-      double poisson_ratio  = 0;
-      double lambda         = 0;
-      double shear_modulus  = 0;
+      IsotropicElasticity elasticity;
     };
   } // namespace MaterialModels
 } // namespace MPM

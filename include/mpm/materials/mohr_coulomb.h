@@ -1,6 +1,7 @@
 #ifndef mpm_materials_mohr_coulomb_h
 #define mpm_materials_mohr_coulomb_h
 
+#include <mpm/materials/isotropic_elasticity.h>
 #include <mpm/materials/material_model.h>
 
 #include <array>
@@ -111,15 +112,12 @@ namespace MPM
       return_principal(std::array<double, 3> &s) const;
 
     private:
-      double youngs_modulus = 0;
-      double poisson_ratio  = 0;
+      IsotropicElasticity elasticity;
       double friction_angle = 0; // radians
       double dilation_angle = 0; // radians
       double cohesion       = 0;
       double tension_cutoff = 0;
 
-      double lambda        = 0;
-      double shear_modulus = 0;
 
       /**
        * The six surfaces f_k = a_k . s - b_k in the sorted principal frame,
