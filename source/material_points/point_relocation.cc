@@ -86,6 +86,8 @@ namespace MPM
     std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
                         leavers;
     std::vector<Move>   moves;
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+      lost;
     std::vector<double> properties;
     bool                need_full_sort = false;
 
@@ -141,7 +143,17 @@ namespace MPM
                 location.found = true;
               }
           }
-        if (!location.found || !location.cell->is_locally_owned())
+        if (!location.found)
+          {
+            // Neither next to its old cell nor anywhere in the mesh (every
+            // rank's triangulation covers the whole domain): the point left
+            // the domain. Reported as deal.II's sort would report it, so
+            // that the owner of the signal decides (error or removal).
+            particle_handler.signals.particle_lost(point, old_cell);
+            lost.push_back(point);
+            continue;
+          }
+        if (!location.cell->is_locally_owned())
           {
             need_full_sort = true;
             break;
@@ -167,6 +179,7 @@ namespace MPM
       return;
     const unsigned int n_properties =
       particle_handler.n_properties_per_particle();
+    // The lost points are among the leavers: removed, not re-inserted.
     particle_handler.remove_particles(leavers);
     for (const auto &m : moves)
       particle_handler.insert_particle(

@@ -35,10 +35,17 @@ namespace MPM
    *     index wins among the cells that contain it), then in the whole mesh;
    *  3. moves only those points (remove and insert in the ParticleHandler,
    *     which stays the store of the points).
-   * If any point, on any rank, left the locally owned cells or the mesh,
-   * the step falls back to sort_particles_into_subdomains_and_cells(),
-   * which sends points to other ranks and reports lost points through the
-   * particle_lost signal, so that no point is ever lost silently.
+   * A point found in no cell (neither around its old cell nor by
+   * GridTools::find_active_cell_around_point() in the whole mesh, which
+   * every rank's triangulation covers) has left the domain: it is reported
+   * through the ParticleHandler's particle_lost signal, as deal.II's sort
+   * would report it, and removed; whoever listens decides (the Simulator
+   * stops the run or counts the point's mass). If any point, on any rank,
+   * moved into a cell this rank does not own, the step falls back to
+   * sort_particles_into_subdomains_and_cells(), which sends points to
+   * their ranks. deal.II's sort is not used to find points otherwise: on a
+   * strongly distorted mesh it reports points inside the mesh as lost
+   * (doc/point_location.md).
    *
    * 'sort' always calls deal.II's function, for comparison.
    */
