@@ -162,6 +162,7 @@ namespace MPM
     Flume<dim>::initialize(const Simulator<dim> &simulator)
     {
       samples.push_back(sample(simulator));
+      n_points_initial = simulator.get_particle_handler().n_global_particles();
     }
 
 
@@ -218,12 +219,16 @@ namespace MPM
                 "(negative upslope), x of the bed point at s\n"
              << "# time (s)   s_front (m)   s_tail (m)   x_front (m)   "
                 "x_tail (m)   mean |v| (m/s)   mean v_x (m/s)   mean v_y (m/s)\n";
+      const auto n_points = simulator.get_particle_handler().n_global_particles();
       for (const auto &s : samples)
         report << std::setw(10) << s.time << std::setw(14) << s.s_front
                << std::setw(14) << s.s_tail << std::setw(14) << s.x_front
                << std::setw(14) << s.x_tail << std::setw(14) << s.mean_speed
                << std::setw(14) << s.mean_velocity[0] << std::setw(14)
                << s.mean_velocity[1] << '\n';
+      report << "material points: " << n_points_initial << " at the start, "
+             << n_points << " at the end (" << n_points_initial - n_points
+             << " left the mesh and were removed)\n";
       report << "peak mean speed (every step): " << peak_speed
              << " m/s at t = " << peak_time << " s\n";
       if (end_speed >= stop_speed)

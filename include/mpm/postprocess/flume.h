@@ -82,6 +82,7 @@ namespace MPM
       double              peak_speed = 0, peak_time = 0;
       double              last_time_above_stop = -1, first_time_after = -1;
       double              end_speed = 0;
+      unsigned long long  n_points_initial = 0;
       std::vector<Sample> samples;
     };
   } // namespace Postprocessors
