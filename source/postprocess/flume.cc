@@ -78,13 +78,13 @@ namespace MPM
     {
       // Down-slope unit vector u and upward normal n of the incline; the
       // arc runs from T1 (on the incline) to T2 (on the runout), centre C.
-      const double     d = radius * std::tan(theta / 2), half = radius * theta / 2;
+      const double d = radius * std::tan(theta / 2), half = radius * theta / 2;
       const Tensor<1, 2> u({std::cos(theta), -std::sin(theta)});
       const Tensor<1, 2> n({std::sin(theta), std::cos(theta)});
       const Point<2>     p(x, y);
-      const Point<2>     t1 = break_point - d * u;
-      const Point<2>     t2 = break_point + Tensor<1, 2>({d, 0.});
-      const Point<2>     c  = t2 + Tensor<1, 2>({0., radius});
+      const Point<2>     t1            = break_point - d * u;
+      const Point<2>     t2            = break_point + Tensor<1, 2>({d, 0.});
+      const Point<2>     c             = t2 + Tensor<1, 2>({0., radius});
       const double       along_incline = (p - t1) * u;
       if (along_incline <= 0)
         return {-half + along_incline, (p - t1) * n};
@@ -101,7 +101,7 @@ namespace MPM
     Point<2>
     Flume<dim>::bed_point(const double s) const
     {
-      const double     d = radius * std::tan(theta / 2), half = radius * theta / 2;
+      const double d = radius * std::tan(theta / 2), half = radius * theta / 2;
       const Tensor<1, 2> u({std::cos(theta), -std::sin(theta)});
       if (s <= -half)
         return break_point - d * u + (s + half) * u;
@@ -124,17 +124,17 @@ namespace MPM
       double      sums[3]     = {0, 0, 0};
       const auto &grid        = simulator.get_grid();
       for (const auto &point : simulator.get_particle_handler())
-        {
-          const Point<dim> x = grid.to_scene_frame(point.get_location());
-          const Point<dim> v = grid.to_scene_frame(
-            Point<dim>(read_vector<dim>(&point.get_properties()[Layout::velocity])));
-          const double s = bed_coordinates(x[0], x[1]).first;
-          extremes[0]    = std::min(extremes[0], -s);
-          extremes[1]    = std::min(extremes[1], s);
-          sums[0] += v.norm();
-          sums[1] += v[0];
-          sums[2] += v[1];
-        }
+      {
+        const Point<dim> x = grid.to_scene_frame(point.get_location());
+        const Point<dim> v = grid.to_scene_frame(Point<dim>(
+          read_vector<dim>(&point.get_properties()[Layout::velocity])));
+        const double     s = bed_coordinates(x[0], x[1]).first;
+        extremes[0]        = std::min(extremes[0], -s);
+        extremes[1]        = std::min(extremes[1], s);
+        sums[0] += v.norm();
+        sums[1] += v[0];
+        sums[2] += v[1];
+      }
       const MPI_Comm comm = simulator.get_mpi_communicator();
       Utilities::MPI::min(ArrayView<const double>(extremes, 2),
                           comm,
@@ -143,7 +143,8 @@ namespace MPM
                           comm,
                           ArrayView<double>(sums, 3));
       const double n =
-        std::max<double>(1, simulator.get_particle_handler().n_global_particles());
+        std::max<double>(1,
+                         simulator.get_particle_handler().n_global_particles());
       Sample r;
       r.time             = simulator.get_time();
       r.s_front          = -extremes[0];
@@ -174,30 +175,33 @@ namespace MPM
       // peak and the stop time, at every step.
       Sample s;
       if (output_step)
-        {
-          s = sample(simulator);
-          samples.push_back(s);
-        }
+      {
+        s = sample(simulator);
+        samples.push_back(s);
+      }
       else
-        {
-          using Layout = PropertyLayout<dim>;
-          double sum   = 0;
-          for (const auto &point : simulator.get_particle_handler())
-            sum += read_vector<dim>(&point.get_properties()[Layout::velocity]).norm();
-          s.time       = simulator.get_time();
-          s.mean_speed = Utilities::MPI::sum(sum, simulator.get_mpi_communicator()) /
-                         std::max<double>(1, simulator.get_particle_handler().n_global_particles());
-        }
+      {
+        using Layout = PropertyLayout<dim>;
+        double sum   = 0;
+        for (const auto &point : simulator.get_particle_handler())
+          sum +=
+            read_vector<dim>(&point.get_properties()[Layout::velocity]).norm();
+        s.time = simulator.get_time();
+        s.mean_speed =
+          Utilities::MPI::sum(sum, simulator.get_mpi_communicator()) /
+          std::max<double>(
+            1, simulator.get_particle_handler().n_global_particles());
+      }
       if (s.mean_speed > peak_speed)
-        {
-          peak_speed = s.mean_speed;
-          peak_time  = s.time;
-        }
+      {
+        peak_speed = s.mean_speed;
+        peak_time  = s.time;
+      }
       if (s.mean_speed >= stop_speed)
-        {
-          last_time_above_stop = s.time;
-          first_time_after     = -1;
-        }
+      {
+        last_time_above_stop = s.time;
+        first_time_after     = -1;
+      }
       else if (first_time_after < 0)
         first_time_after = s.time;
       end_speed = s.mean_speed;
@@ -206,20 +210,23 @@ namespace MPM
 
     template <int dim>
     void
-    Flume<dim>::write_report(const Simulator<dim> &simulator, std::ostream &report)
+    Flume<dim>::write_report(const Simulator<dim> &simulator,
+                             std::ostream         &report)
     {
-      using Layout          = PropertyLayout<dim>;
-      const auto  &grid     = simulator.get_grid();
-      const MPI_Comm comm   = simulator.get_mpi_communicator();
+      using Layout        = PropertyLayout<dim>;
+      const auto    &grid = simulator.get_grid();
+      const MPI_Comm comm = simulator.get_mpi_communicator();
 
-      report << "## flume: incline " << theta * 180 / M_PI
-             << " deg, arc radius " << radius << " m, break in slope at ("
-             << break_point[0] << ", " << break_point[1]
-             << "); s = distance along the bed from the arc's midpoint "
-                "(negative upslope), x of the bed point at s\n"
-             << "# time (s)   s_front (m)   s_tail (m)   x_front (m)   "
-                "x_tail (m)   mean |v| (m/s)   mean v_x (m/s)   mean v_y (m/s)\n";
-      const auto n_points = simulator.get_particle_handler().n_global_particles();
+      report
+        << "## flume: incline " << theta * 180 / M_PI << " deg, arc radius "
+        << radius << " m, break in slope at (" << break_point[0] << ", "
+        << break_point[1]
+        << "); s = distance along the bed from the arc's midpoint "
+           "(negative upslope), x of the bed point at s\n"
+        << "# time (s)   s_front (m)   s_tail (m)   x_front (m)   "
+           "x_tail (m)   mean |v| (m/s)   mean v_x (m/s)   mean v_y (m/s)\n";
+      const auto n_points =
+        simulator.get_particle_handler().n_global_particles();
       for (const auto &s : samples)
         report << std::setw(10) << s.time << std::setw(14) << s.s_front
                << std::setw(14) << s.s_tail << std::setw(14) << s.x_front
@@ -232,15 +239,14 @@ namespace MPM
       report << "peak mean speed (every step): " << peak_speed
              << " m/s at t = " << peak_time << " s\n";
       if (end_speed >= stop_speed)
-        report << "mean speed still >= " << stop_speed
-               << " m/s at the end (" << end_speed << " m/s)\n";
+        report << "mean speed still >= " << stop_speed << " m/s at the end ("
+               << end_speed << " m/s)\n";
       else if (last_time_above_stop < 0)
-        report << "mean speed below " << stop_speed
-               << " m/s at every step\n";
+        report << "mean speed below " << stop_speed << " m/s at every step\n";
       else
-        report << "mean speed below " << stop_speed << " m/s from t = "
-               << first_time_after << " s on (at the end " << end_speed
-               << " m/s)\n";
+        report << "mean speed below " << stop_speed
+               << " m/s from t = " << first_time_after << " s on (at the end "
+               << end_speed << " m/s)\n";
       // The last output times within the tolerance of the final front.
       std::size_t rest = samples.size() - 1;
       while (rest > 0 && std::abs(samples[rest - 1].s_front -
@@ -261,14 +267,16 @@ namespace MPM
       // Per bin: volume, number of points; largest height separately.
       std::vector<double> sums(2 * n_bins, 0.), heights(n_bins, 0.);
       for (const auto &point : simulator.get_particle_handler())
-        {
-          const Point<dim> x = grid.to_scene_frame(point.get_location());
-          const auto [s, h]  = bed_coordinates(x[0], x[1]);
-          const long b       = std::clamp<long>(std::floor(s / bin_width) - first_bin, 0, n_bins - 1);
-          sums[2 * b] += point.get_properties()[Layout::volume];
-          sums[2 * b + 1] += 1;
-          heights[b] = std::max(heights[b], h);
-        }
+      {
+        const Point<dim> x = grid.to_scene_frame(point.get_location());
+        const auto [s, h]  = bed_coordinates(x[0], x[1]);
+        const long b = std::clamp<long>(std::floor(s / bin_width) - first_bin,
+                                        0,
+                                        n_bins - 1);
+        sums[2 * b] += point.get_properties()[Layout::volume];
+        sums[2 * b + 1] += 1;
+        heights[b] = std::max(heights[b], h);
+      }
       Utilities::MPI::sum(sums, comm, sums);
       Utilities::MPI::max(heights, comm, heights);
       report << "## flume: final deposit, bins of " << bin_width
@@ -279,26 +287,26 @@ namespace MPM
                 "max height (m)   points\n";
       long thickest = -1;
       for (long b = 0; b < n_bins; ++b)
-        {
-          if (sums[2 * b + 1] == 0)
-            continue;
-          const double   s = (first_bin + b + 0.5) * bin_width;
-          const Point<2> q = bed_point(s);
-          report << std::setw(10) << s << std::setw(14) << q[0]
-                 << std::setw(14) << q[1] << std::setw(14)
-                 << sums[2 * b] / bin_width << std::setw(14) << heights[b]
-                 << std::setw(8) << sums[2 * b + 1] << '\n';
-          if (thickest < 0 || sums[2 * b] > sums[2 * thickest])
-            thickest = b;
-        }
+      {
+        if (sums[2 * b + 1] == 0)
+          continue;
+        const double   s = (first_bin + b + 0.5) * bin_width;
+        const Point<2> q = bed_point(s);
+        report << std::setw(10) << s << std::setw(14) << q[0] << std::setw(14)
+               << q[1] << std::setw(14) << sums[2 * b] / bin_width
+               << std::setw(14) << heights[b] << std::setw(8) << sums[2 * b + 1]
+               << '\n';
+        if (thickest < 0 || sums[2 * b] > sums[2 * thickest])
+          thickest = b;
+      }
       if (thickest >= 0)
-        {
-          const double s = (first_bin + thickest + 0.5) * bin_width;
-          report << "thickest deposit: mean thickness "
-                 << sums[2 * thickest] / bin_width << " m (max height "
-                 << heights[thickest] << " m) at s = " << s
-                 << " m, x = " << bed_point(s)[0] << " m\n";
-        }
+      {
+        const double s = (first_bin + thickest + 0.5) * bin_width;
+        report << "thickest deposit: mean thickness "
+               << sums[2 * thickest] / bin_width << " m (max height "
+               << heights[thickest] << " m) at s = " << s
+               << " m, x = " << bed_point(s)[0] << " m\n";
+      }
     }
 
 

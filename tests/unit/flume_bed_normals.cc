@@ -95,26 +95,26 @@ main(int argc, char **argv)
   // Bed nodes sorted by the distance s along the bed.
   struct BedNode
   {
-    double         s, height;
-    Point<2>       x;
-    Tensor<1, 2>   normal;
-    bool           frictional;
+    double       s, height;
+    Point<2>     x;
+    Tensor<1, 2> normal;
+    bool         frictional;
   };
   std::vector<BedNode> bed;
   for (const auto &node : bc.constrained_nodes())
-    {
-      const Point<2> x = support_points.at(
-        layout.get_partitioner()->local_to_global(node.local_dofs[0]));
-      const auto [s, h] = flume.bed_coordinates(x[0], x[1]);
-      bed.push_back({s, h, x, node.normal, node.frictional});
-    }
-  std::sort(bed.begin(), bed.end(), [](const BedNode &a, const BedNode &b) {
-    return a.s < b.s;
-  });
+  {
+    const Point<2> x = support_points.at(
+      layout.get_partitioner()->local_to_global(node.local_dofs[0]));
+    const auto [s, h] = flume.bed_coordinates(x[0], x[1]);
+    bed.push_back({s, h, x, node.normal, node.frictional});
+  }
+  std::sort(bed.begin(),
+            bed.end(),
+            [](const BedNode &a, const BedNode &b) { return a.s < b.s; });
 
-  const double theta = 31.4 * M_PI / 180, radius = 0.1;
-  const double half  = radius * theta / 2;
-  const Point<2> centre(radius * std::tan(theta / 2), radius);
+  const double       theta = 31.4 * M_PI / 180, radius = 0.1;
+  const double       half = radius * theta / 2;
+  const Point<2>     centre(radius * std::tan(theta / 2), radius);
   const Tensor<1, 2> normal_incline({-std::sin(theta), -std::cos(theta)});
   const Tensor<1, 2> normal_runout({0., -1.});
 
@@ -122,35 +122,36 @@ main(int argc, char **argv)
   double       max_height = 0, max_chord_error = 0;
   double       max_incline = 0, max_runout = 0, max_arc = 0;
   for (std::size_t i = 0; i < bed.size(); ++i)
+  {
+    const auto &b = bed[i];
+    n_frictional += b.frictional;
+    max_height = std::max(max_height, std::abs(b.height));
+    // Length-weighted average of the faces' outward normals: the chord
+    // from the previous to the next node turned by -90 degrees.
+    const Point<2> &a = bed[i > 0 ? i - 1 : i].x;
+    const Point<2> &c = bed[i + 1 < bed.size() ? i + 1 : i].x;
+    Tensor<1, 2>    chord_normal({c[1] - a[1], -(c[0] - a[0])});
+    chord_normal /= chord_normal.norm();
+    max_chord_error =
+      std::max(max_chord_error, (b.normal - chord_normal).norm());
+    if (b.s < -half - 1e-9)
     {
-      const auto &b = bed[i];
-      n_frictional += b.frictional;
-      max_height = std::max(max_height, std::abs(b.height));
-      // Length-weighted average of the faces' outward normals: the chord
-      // from the previous to the next node turned by -90 degrees.
-      const Point<2>    &a = bed[i > 0 ? i - 1 : i].x;
-      const Point<2>    &c = bed[i + 1 < bed.size() ? i + 1 : i].x;
-      Tensor<1, 2>       chord_normal({c[1] - a[1], -(c[0] - a[0])});
-      chord_normal /= chord_normal.norm();
-      max_chord_error =
-        std::max(max_chord_error, (b.normal - chord_normal).norm());
-      if (b.s < -half - 1e-9)
-        {
-          ++n_incline;
-          max_incline = std::max(max_incline, angle_degrees(b.normal, normal_incline));
-        }
-      else if (b.s > half + 1e-9)
-        {
-          ++n_runout;
-          max_runout = std::max(max_runout, angle_degrees(b.normal, normal_runout));
-        }
-      else
-        {
-          ++n_arc;
-          Tensor<1, 2> radial = b.x - centre;
-          max_arc = std::max(max_arc, angle_degrees(b.normal, radial));
-        }
+      ++n_incline;
+      max_incline =
+        std::max(max_incline, angle_degrees(b.normal, normal_incline));
     }
+    else if (b.s > half + 1e-9)
+    {
+      ++n_runout;
+      max_runout = std::max(max_runout, angle_degrees(b.normal, normal_runout));
+    }
+    else
+    {
+      ++n_arc;
+      Tensor<1, 2> radial = b.x - centre;
+      max_arc             = std::max(max_arc, angle_degrees(b.normal, radial));
+    }
+  }
 
   std::cout << std::setprecision(4) << "flume bed: " << bed.size()
             << " constrained nodes (" << n_incline << " on the incline, "

@@ -50,7 +50,8 @@ namespace MPM
       execute(const Simulator<dim> &simulator, const bool output_step) override;
 
       void
-      write_report(const Simulator<dim> &simulator, std::ostream &report) override;
+      write_report(const Simulator<dim> &simulator,
+                   std::ostream         &report) override;
 
       /**
        * Distance s along the bed and height h normal to it of the point
@@ -75,13 +76,13 @@ namespace MPM
       Sample
       sample(const Simulator<dim> &simulator) const;
 
-      double   theta = 0, radius = 0.1, bin_width = 0.01, stop_speed = 0.01,
+      double theta = 0, radius = 0.1, bin_width = 0.01, stop_speed = 0.01,
              front_tolerance = 0.001;
       Point<2> break_point;
 
       double              peak_speed = 0, peak_time = 0;
       double              last_time_above_stop = -1, first_time_after = -1;
-      double              end_speed = 0;
+      double              end_speed        = 0;
       unsigned long long  n_points_initial = 0;
       std::vector<Sample> samples;
     };
