@@ -2,6 +2,7 @@
 
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/postprocess/flume.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
 
@@ -405,7 +406,8 @@ namespace MPM
     std::string
     names()
     {
-      return "vibrating bar|self-weight column|conservation|sliding block";
+      return "vibrating bar|self-weight column|conservation|sliding block|"
+             "flume";
     }
 
 
@@ -426,6 +428,9 @@ namespace MPM
       prm.enter_subsection("sliding block");
       SlidingBlock<dim>::declare_parameters(prm);
       prm.leave_subsection();
+      prm.enter_subsection("flume");
+      Flume<dim>::declare_parameters(prm);
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -443,6 +448,8 @@ namespace MPM
         p = std::make_unique<Conservation<dim>>();
       else if (name == "sliding block")
         p = std::make_unique<SlidingBlock<dim>>();
+      else if (name == "flume")
+        p = std::make_unique<Flume<dim>>();
       else
         throw InputError("Unknown postprocessor '" + name + "'.");
       prm.enter_subsection("Postprocess");
