@@ -173,9 +173,15 @@ namespace MPM
       }
 
     double h = std::numeric_limits<double>::max();
+    cell_sizes.assign(triangulation.n_active_cells(), 0.);
     for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        h = std::min(h, cell->minimum_vertex_distance());
+      if (!cell->is_artificial())
+        {
+          cell_sizes[cell->active_cell_index()] =
+            cell->minimum_vertex_distance();
+          if (cell->is_locally_owned())
+            h = std::min(h, cell_sizes[cell->active_cell_index()]);
+        }
     min_cell_size = Utilities::MPI::min(h, mpi_communicator);
 
     setup_dofs();

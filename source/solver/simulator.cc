@@ -213,7 +213,7 @@ namespace MPM
     double dt = time_stepping.fixed_time_step;
     if (time_stepping.adaptive)
       dt = std::min(time_stepping.maximum_time_step,
-                    time_stepping.cfl_number * grid.minimum_cell_size() /
+                    time_stepping.cfl_number * active_cell_size /
                       (materials.max_wave_speed() + max_point_speed));
     // Land on the end time exactly rather than overshoot it.
     if (time + dt > time_stepping.end_time * (1 - 1e-12))
@@ -237,6 +237,7 @@ namespace MPM
     std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
     std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
     unsigned int                         k = 0;
+    double h_min = std::numeric_limits<double>::max();
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
         const typename Triangulation<dim>::active_cell_iterator tria_cell =
@@ -248,6 +249,7 @@ namespace MPM
                                 &grid.dof_handler);
         cell->get_dof_indices(cell_dofs);
 
+        h_min = std::min(h_min, grid.cell_size(tria_cell));
         ActiveCell active{static_cast<unsigned int>(
                             particle_handler.n_particles_in_cell(tria_cell)),
                           {}};
@@ -274,6 +276,7 @@ namespace MPM
       }
     for (const unsigned int i : active_dofs)
       dof_is_active[i] = 0;
+    active_cell_size = Utilities::MPI::min(h_min, mpi_communicator);
   }
 
 
@@ -577,9 +580,9 @@ namespace MPM
   void
   Simulator<dim>::do_time_step()
   {
-    time_step = compute_time_step();
     zero_nodal_fields();
     prepare_transfer();
+    time_step = compute_time_step();
     map_mass_and_momentum();
     compute_nodal_velocity(nodal_velocity);
     if (time_stepping.scheme == UpdateScheme::usf)

@@ -20,7 +20,8 @@ namespace MPM
                         Patterns::Selection("cfl|fixed"),
                         "'cfl': dt = CFL number * h_min / (c + |v|_max) with "
                         "c the largest elastic P-wave speed, h_min the "
-                        "smallest edge of the mesh and |v|_max the largest "
+                        "shortest edge of the cells that hold points and "
+                        "|v|_max the largest "
                         "point speed, recomputed every step; 'fixed': 'Time "
                         "step'.");
       prm.declare_entry("Time step",

@@ -62,13 +62,24 @@ namespace MPM
     setup_dofs();
 
     /**
-     * Smallest edge length over the whole mesh: the length scale of the
-     * CFL condition.
+     * Smallest edge length over the whole mesh.
      */
     double
     minimum_cell_size() const
     {
       return min_cell_size;
+    }
+
+    /**
+     * Shortest edge of each locally relevant active cell, indexed by
+     * active_cell_index(): the CFL length of the cells that hold points,
+     * computed once, so that small cells far from the material (a mesh
+     * graded away from the ground) do not shorten the time step.
+     */
+    double
+    cell_size(const typename Triangulation<dim>::active_cell_iterator &cell) const
+    {
+      return cell_sizes[cell->active_cell_index()];
     }
 
     /**
@@ -138,6 +149,7 @@ namespace MPM
     double         rotation_angle = 0;
     Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
     double       min_cell_size        = 0;
+    std::vector<double> cell_sizes;
   };
 } // namespace MPM
 

@@ -249,6 +249,8 @@ namespace MPM
     double       time_step = 0;
     unsigned int step      = 0;
     double       max_point_speed = 0;
+    /// Shortest edge among the cells that hold points this step (all ranks).
+    double       active_cell_size = 0;
     unsigned int output_index    = 0;
 
     /// Points removed because they left the mesh (Points leaving the mesh
