@@ -19,25 +19,18 @@
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/postprocess/flume.h>
 
+#include "unit_test_tools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 
 using namespace dealii;
+using namespace UnitTest;
 
 namespace
 {
-  unsigned int n_failed = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << "    " << (ok ? "ok" : "FAILED") << ": " << what << '\n';
-    if (!ok)
-      ++n_failed;
-  }
-
   double
   angle_degrees(const Tensor<1, 2> &a, const Tensor<1, 2> &b)
   {
@@ -176,7 +169,5 @@ main(int argc, char **argv)
   check(n_arc >= 5 && max_arc < 1.,
         "arc nodes within 1 degree of the radial direction");
 
-  std::cout << (n_failed == 0 ? "all checks passed" : "SOME CHECKS FAILED")
-            << '\n';
-  return n_failed == 0 ? 0 : 1;
+  return UnitTest::summary();
 }

@@ -12,6 +12,8 @@
 #include <mpm/materials/linear_elastic.h>
 #include <mpm/materials/mohr_coulomb.h>
 
+#include "unit_test_tools.h"
+
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -22,28 +24,11 @@
 #include <string>
 
 using namespace dealii;
+using namespace UnitTest;
 using MPM::MaterialModels::MohrCoulomb;
 
 namespace
 {
-  unsigned int n_failed = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << "    " << (ok ? "ok" : "FAILED") << ": " << what << '\n';
-    if (!ok)
-      ++n_failed;
-  }
-
-  // Values below the tolerance of a check are printed as 0: rounding
-  // residues differ from machine to machine.
-  double
-  flush(const double x, const double below = 1e-10)
-  {
-    return std::abs(x) < below ? 0. : x;
-  }
-
   struct Parameters
   {
     double E   = 2e6;
@@ -286,7 +271,7 @@ namespace
               << "; sigma_xy = " << stress[0][1]
               << ", reference -p sin(phi) = " << tau << '\n';
     const double f_rel = yield(stress, p) / std::abs(mean(stress));
-    std::cout << "    f / |p| = " << flush(f_rel) << '\n';
+    std::cout << "    f / |p| = " << flush_to_zero(f_rel) << '\n';
     check(std::abs(f_rel) < 1e-10, "on the yield surface");
     const double ratio = s[2] / s[0], reference = (1 + sin_phi) / (1 - sin_phi);
     std::cout << "    sigma_3 / sigma_1 = " << ratio
@@ -402,14 +387,14 @@ namespace
                 << set_name(c.expected) << '\n'
                 << "      principal stresses " << s[0] << ' ' << s[1] << ' '
                 << s[2]
-                << ", f / |p_trial| = " << flush(yield(stress, c.p) / scale)
+                << ", f / |p_trial| = " << flush_to_zero(yield(stress, c.p) / scale)
                 << '\n';
       if (c.expected & 4)
         std::cout << "      (s1 - s2) / |p_trial| = "
-                  << flush((s[0] - s[1]) / scale) << ", reference 0\n";
+                  << flush_to_zero((s[0] - s[1]) / scale) << ", reference 0\n";
       if (c.expected & 2)
         std::cout << "      (s2 - s3) / |p_trial| = "
-                  << flush((s[1] - s[2]) / scale) << ", reference 0\n";
+                  << flush_to_zero((s[1] - s[2]) / scale) << ", reference 0\n";
       if (c.expected & 8)
         std::cout << "      s1 = " << s[0] << ", reference T = " << c.p.T
                   << '\n';
@@ -515,12 +500,12 @@ namespace
       return_stress(*models[m], again);
       max_repeat = std::max(max_repeat, max_abs(again - stress));
     }
-    std::cout << "    max f / max|sigma_trial| = " << flush(max_f)
+    std::cout << "    max f / max|sigma_trial| = " << flush_to_zero(max_f)
               << " (<= 1e-10 required)\n";
     check(max_f <= 1e-10, "all returned stresses admissible");
     std::cout << "    max |R sigma R^T - return(R sigma_trial R^T)| / "
                  "max|sigma_trial| = "
-              << flush(max_rotation, 1e-9) << " (<= 1e-9 required)\n";
+              << flush_to_zero(max_rotation, 1e-9) << " (<= 1e-9 required)\n";
     check(max_rotation <= 1e-9, "invariant under rotation of the frame");
     std::cout << "    (7) max |change| when a returned stress is returned "
                  "again = "
@@ -570,6 +555,5 @@ main()
   test_no_dilation();
   test_random();
   test_idempotent();
-  std::cout << (n_failed == 0 ? "all checks passed" : "CHECKS FAILED") << '\n';
-  return n_failed == 0 ? 0 : 1;
+  return UnitTest::summary();
 }

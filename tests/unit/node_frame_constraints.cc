@@ -19,33 +19,17 @@
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
+#include "unit_test_tools.h"
+
 #include <cmath>
 #include <iomanip>
 #include <iostream>
 
 using namespace dealii;
+using namespace UnitTest;
 
 namespace
 {
-  unsigned int n_failed = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    std::cout << "    " << (ok ? "ok" : "FAILED") << ": " << what << '\n';
-    if (!ok)
-      ++n_failed;
-  }
-
-  // Round-off residues differ between machines: print them as 0 below the
-  // tolerance of the check.
-  double
-  clean(const double x, const double tolerance = 1e-13)
-  {
-    return std::abs(x) < tolerance ? 0. : x;
-  }
-
-
   void
   tilted_slip_wall(const double angle_degrees)
   {
@@ -110,11 +94,13 @@ namespace
       }
     std::cout << "wall at " << std::setw(6) << angle_degrees << " deg, "
               << bc.constrained_nodes().size() << " nodes, v = 1 t + 0.5 n\n"
-              << "  projection:   max |v.n| = " << clean(max_normal)
-              << ", max |v.t - 1| = " << clean(max_tangential) << '\n'
+              << "  projection:   max |v.n| = "
+              << flush_to_zero(max_normal, 1e-13) << ", max |v.t - 1| = "
+              << flush_to_zero(max_tangential, 1e-13) << '\n'
               << "  distribute(): max |v.n| = "
-              << clean(max_normal_distribute)
-              << ", max |v.t - 1| = " << clean(max_tangential_distribute)
+              << flush_to_zero(max_normal_distribute, 1e-13)
+              << ", max |v.t - 1| = "
+              << flush_to_zero(max_tangential_distribute, 1e-13)
               << '\n';
     check(bc.constrained_nodes().size() == 5, "the 5 nodes of the bottom edge");
     check(max_normal < 1e-14 && max_tangential < 1e-14,
@@ -142,7 +128,8 @@ namespace
       MPM::BoundaryConditions<2>::frictional_acceleration(v, a, n, mu, dt);
     std::cout << "friction, " << what << ": v = (" << v << "), a = (" << a
               << "), mu = " << mu << ", dt = " << dt << "\n  a' = ("
-              << clean(result[0]) << ", " << clean(result[1])
+              << flush_to_zero(result[0], 1e-13) << ", "
+              << flush_to_zero(result[1], 1e-13)
               << "), expected (" << expected << ")\n";
     check((result - expected).norm() < 1e-12, what);
   }
@@ -183,7 +170,5 @@ main(int argc, char **argv)
            0.5,
            Tensor<1, 2>({2., 10.}));
 
-  std::cout << (n_failed == 0 ? "all checks passed" : "SOME CHECKS FAILED")
-            << '\n';
-  return n_failed == 0 ? 0 : 1;
+  return UnitTest::summary();
 }
