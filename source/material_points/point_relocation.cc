@@ -86,8 +86,6 @@ namespace MPM
     std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
                         leavers;
     std::vector<Move>   moves;
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-      lost;
     std::vector<double> properties;
     bool                need_full_sort = false;
 
@@ -150,7 +148,6 @@ namespace MPM
             // the domain. Reported as deal.II's sort would report it, so
             // that the owner of the signal decides (error or removal).
             particle_handler.signals.particle_lost(point, old_cell);
-            lost.push_back(point);
             continue;
           }
         if (!location.cell->is_locally_owned())

@@ -751,6 +751,13 @@ namespace MPM
           << static_cast<double>(step) * particle_handler.n_global_particles() /
                wall
           << " particle-steps/s\n";
+    const auto &located = point_relocation.statistics();
+    if (located.n_points_mapped > 0)
+      pcout << "Point location (rank 0): "
+            << 100. * located.n_points_moved / located.n_points_mapped
+            << " % of the point-steps changed cell; "
+            << located.n_full_sorts
+            << " step(s) needed deal.II's full sort.\n";
     timer.print_summary();
   }
 
