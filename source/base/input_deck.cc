@@ -117,6 +117,38 @@ namespace MPM
   }
 
 
+  template <int dim>
+  Point<dim>
+  parse_point(const std::string &text, const std::string &parameter)
+  {
+    const auto parts = Utilities::split_string_list(text, ',');
+    const std::string expected = parameter + " = '" + text + "': expected " +
+                                 std::to_string(dim) +
+                                 " comma separated numbers.";
+    check_input(parts.size() == dim, expected);
+    Point<dim> p;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        std::size_t end = 0;
+        try
+          {
+            p[d] = std::stod(parts[d], &end);
+          }
+        catch (const std::exception &)
+          {
+            end = 0;
+          }
+        check_input(end > 0 && end == parts[d].size(), expected);
+      }
+    return p;
+  }
+
+  template Point<2>
+  parse_point<2>(const std::string &, const std::string &);
+  template Point<3>
+  parse_point<3>(const std::string &, const std::string &);
+
+
   std::vector<std::string>
   split_name_list(const std::string &list, const std::string &parameter_name)
   {

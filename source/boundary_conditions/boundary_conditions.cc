@@ -14,20 +14,6 @@ namespace MPM
 {
   namespace
   {
-    template <int dim>
-    Tensor<1, dim>
-    parse_vector(const std::string &text, const std::string &parameter)
-    {
-      const auto parts = Utilities::split_string_list(text, ',');
-      check_input(parts.size() == dim,
-                  parameter + " = '" + text + "': expected " +
-                    std::to_string(dim) + " comma separated numbers.");
-      Tensor<1, dim> v;
-      for (unsigned int d = 0; d < dim; ++d)
-        v[d] = Utilities::string_to_double(parts[d]);
-      return v;
-    }
-
     /**
      * Tangent of the 2D local frame: the outward normal turned by +90
      * degrees, so that on a bed with outward normal (0, -1) the tangent is
@@ -156,7 +142,7 @@ namespace MPM
         if (!s.normal_from_mesh)
           {
             s.given_normal =
-              parse_vector<dim>(prm.get("Outward normal"), path + "Outward normal");
+              parse_point<dim>(prm.get("Outward normal"), path + "Outward normal");
             check_input(s.given_normal.norm() > 0,
                         path + "Outward normal must not be zero.");
             s.given_normal /= s.given_normal.norm();
@@ -165,7 +151,7 @@ namespace MPM
           {
             check_input(dim == 2,
                         path + "Type = velocity is implemented in 2D only.");
-            s.local_velocity = parse_vector<dim>(prm.get("Velocity"),
+            s.local_velocity = parse_point<dim>(prm.get("Velocity"),
                                                  path + "Velocity");
           }
         prm.leave_subsection();

@@ -18,20 +18,6 @@ namespace MPM
 {
   namespace
   {
-    template <int dim>
-    Point<dim>
-    parse_point(const std::string &text, const std::string &parameter)
-    {
-      const auto parts = Utilities::split_string_list(text, ',');
-      check_input(parts.size() == dim,
-                  parameter + ": '" + text + "' is not a point with " +
-                    std::to_string(dim) + " comma separated coordinates.");
-      Point<dim> p;
-      for (unsigned int d = 0; d < dim; ++d)
-        p[d] = Utilities::string_to_double(parts[d]);
-      return p;
-    }
-
     /**
      * Even-odd rule; points on an edge count as inside for the lower/left
      * edges only, which is enough because generated points never lie on a

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/flume.h>
@@ -62,13 +63,8 @@ namespace MPM
       bin_width       = prm.get_double("Bin width");
       stop_speed      = prm.get_double("Stop speed");
       front_tolerance = prm.get_double("Front tolerance");
-      const auto parts =
-        Utilities::split_string_list(prm.get("Break in slope"), ',');
-      check_input(parts.size() == 2,
-                  "Postprocess/flume/Break in slope = '" +
-                    prm.get("Break in slope") + "': expected x, y.");
-      for (unsigned int d = 0; d < 2; ++d)
-        break_point[d] = Utilities::string_to_double(parts[d]);
+      break_point = parse_point<2>(prm.get("Break in slope"),
+                                   "Postprocess/flume/Break in slope");
     }
 
 

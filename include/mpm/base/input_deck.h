@@ -2,6 +2,7 @@
 #define mpm_base_input_deck_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
 
 #include <string>
 #include <utility>
@@ -62,6 +63,15 @@ namespace MPM
    */
   std::vector<std::string>
   split_name_list(const std::string &list, const std::string &parameter_name);
+
+  /**
+   * The @p dim comma separated numbers of @p text (a point, a normal, a
+   * velocity given in a parameter file). Anything else is an InputError
+   * naming @p parameter and what was expected.
+   */
+  template <int dim>
+  dealii::Point<dim>
+  parse_point(const std::string &text, const std::string &parameter);
 
   /**
    * Read @p file_name into @p prm. Problems (file missing, unknown
