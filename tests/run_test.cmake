@@ -5,6 +5,7 @@
 #    Tests named bad_input_* or error_* must stop with a non-zero exit code;
 #    their stderr is compared instead. Tests whose name starts with bad_input_
 #    must fail with a non-zero exit code; their stderr is compared instead.
+#    With RANKS > 1 (tests NAME.mpirun=N), mpm runs on RANKS MPI ranks.
 #  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
 # Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
 # test's expected output's first line), else -a 1e-10 -r 1e-8.
@@ -36,12 +37,20 @@ if(PRM)
   # "# expected output: OTHER.output": compare with another test's expected
   # output (e.g. a rotated scene must reproduce the unrotated one).
   file(STRINGS ${PRM} _other REGEX "^# expected output:")
-  if(_other)
+  if(_other AND RANKS EQUAL 1)
     string(REGEX REPLACE "^# expected output:[ ]*" "" _other "${_other}")
     set(EXPECTED ${_prm_dir}/${_other})
   endif()
+  # On several ranks (RANKS > 1): through mpirun, allowed to run as root
+  # (CI containers) and on fewer cores than ranks.
+  set(_launcher)
+  if(RANKS GREATER 1)
+    set(_launcher ${MPIEXEC} -np ${RANKS} --oversubscribe)
+    set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
+    set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
+  endif()
   execute_process(
-    COMMAND ${MPM} ${_files} --set "Output/Directory=${WORKDIR}"
+    COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}"
     WORKING_DIRECTORY ${WORKDIR}
     RESULT_VARIABLE _rc
     OUTPUT_FILE ${WORKDIR}/screen.txt

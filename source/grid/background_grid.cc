@@ -172,19 +172,7 @@ namespace MPM
                              triangulation);
       }
 
-    double h = std::numeric_limits<double>::max();
-    cell_sizes.assign(triangulation.n_active_cells(), 0.);
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (!cell->is_artificial())
-        {
-          cell_sizes[cell->active_cell_index()] =
-            cell->minimum_vertex_distance();
-          if (cell->is_locally_owned())
-            h = std::min(h, cell_sizes[cell->active_cell_index()]);
-        }
-    min_cell_size = Utilities::MPI::min(h, mpi_communicator);
-
-    setup_dofs();
+    setup_partition_data();
   }
 
 
@@ -248,8 +236,20 @@ namespace MPM
 
   template <int dim>
   void
-  BackgroundGrid<dim>::setup_dofs()
+  BackgroundGrid<dim>::setup_partition_data()
   {
+    double h = std::numeric_limits<double>::max();
+    cell_sizes.assign(triangulation.n_active_cells(), 0.);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell_sizes[cell->active_cell_index()] =
+            cell->minimum_vertex_distance();
+          if (cell->is_locally_owned())
+            h = std::min(h, cell_sizes[cell->active_cell_index()]);
+        }
+    min_cell_size = Utilities::MPI::min(h, mpi_communicator);
+
     dof_handler.distribute_dofs(fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);

@@ -6,6 +6,7 @@
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
+#include <array>
 
 namespace MPM
 {
@@ -85,6 +86,8 @@ namespace MPM
     };
     std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
                         leavers;
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+                        lost;
     std::vector<Move>   moves;
     std::vector<double> properties;
     bool                need_full_sort = false;
@@ -145,9 +148,9 @@ namespace MPM
           {
             // Neither next to its old cell nor anywhere in the mesh (every
             // rank's triangulation covers the whole domain): the point left
-            // the domain. Reported as deal.II's sort would report it, so
-            // that the owner of the signal decides (error or removal).
-            particle_handler.signals.particle_lost(point, old_cell);
+            // the domain. Reported below, unless deal.II's sort takes over
+            // (it reports them itself).
+            lost.push_back(point);
             continue;
           }
         if (!location.cell->is_locally_owned())
@@ -164,16 +167,30 @@ namespace MPM
         properties.insert(properties.end(), p.begin(), p.end());
       }
 
-    // 3. Points that left this rank's cells or the mesh: deal.II moves them
-    //    to their rank or reports them lost.
-    if (Utilities::MPI::logical_or(need_full_sort, comm))
+    // 3. Points that left this rank's cells: deal.II moves them to their
+    //    rank. One reduction decides for every rank whether to sort and
+    //    whether any rank moved points, because both branches below call
+    //    collective functions (the sort, update_cached_numbers()) that
+    //    every rank must enter.
+    const std::array<unsigned int, 2> local_flags{
+      {need_full_sort ? 1u : 0u, leavers.empty() ? 0u : 1u}};
+    std::array<unsigned int, 2> global_flags{};
+    Utilities::MPI::max(ArrayView<const unsigned int>(local_flags),
+                        comm,
+                        ArrayView<unsigned int>(global_flags));
+    if (global_flags[0] != 0)
       {
         particle_handler.sort_particles_into_subdomains_and_cells();
         ++stats.n_full_sorts;
         return;
       }
-    if (leavers.empty())
+    if (global_flags[1] == 0)
       return;
+    // Reported as deal.II's sort would report them, so that the owner of
+    // the signal decides (error or removal).
+    for (const auto &point : lost)
+      particle_handler.signals.particle_lost(point,
+                                             point->get_surrounding_cell());
     const unsigned int n_properties =
       particle_handler.n_properties_per_particle();
     // The lost points are among the leavers: removed, not re-inserted.

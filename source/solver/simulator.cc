@@ -63,6 +63,7 @@ namespace MPM
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
+    LoadBalancing<dim>::declare_parameters(prm);
     prm.enter_subsection("Postprocess");
     prm.declare_entry("List of postprocessors",
                       "",
@@ -105,6 +106,7 @@ namespace MPM
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     output_writer.parse_parameters(prm);
+    load_balancing.parse_parameters(prm);
     prm.enter_subsection("Postprocess");
     postprocessor_names = split_name_list(prm.get("List of postprocessors"),
                                           "Postprocess/List of postprocessors");
@@ -139,26 +141,14 @@ namespace MPM
     output_writer.initialize(mpi_communicator);
     grid.create();
     boundary_conditions.check_boundary_ids(grid);
-    point_relocation.initialize(grid);
 
-    const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
-      grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
-    for (NodalVector *v : {&nodal_mass,
-                           &nodal_momentum,
-                           &nodal_force,
-                           &nodal_velocity,
-                           &nodal_velocity_new,
-                           &nodal_acceleration})
-      v->reinit(partitioner);
-    dof_is_active.assign(nodal_mass.locally_owned_size() +
-                           partitioner->n_ghost_indices(),
-                         0);
-    boundary_conditions.setup(grid, nodal_mass);
+    setup_nodal_fields();
 
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
                                 PropertyLayout<dim>::state +
                                   materials.max_n_state_variables());
+    load_balancing.connect(grid.triangulation, particle_handler);
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
              const typename Triangulation<dim>::active_cell_iterator &) {
@@ -177,6 +167,10 @@ namespace MPM
                              particle_handler);
     // Gravity is given in the scene's frame, like everything else.
     time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
+    // p4est's first partition balances cells; the work is where the points
+    // are.
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+      repartition();
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
@@ -203,6 +197,52 @@ namespace MPM
           << " removed points, " << 11 + 2 * dim
           << " removed mass (kg). Energies per unit thickness in 2D.\n";
       }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_nodal_fields()
+  {
+    const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
+      grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
+    for (NodalVector *v : {&nodal_mass,
+                           &nodal_momentum,
+                           &nodal_force,
+                           &nodal_velocity,
+                           &nodal_velocity_new,
+                           &nodal_acceleration})
+      v->reinit(partitioner);
+    dof_is_active.assign(nodal_mass.locally_owned_size() +
+                           partitioner->n_ghost_indices(),
+                         0);
+    active_dofs.clear();
+    boundary_conditions.setup(grid, nodal_mass);
+    point_relocation.initialize(grid);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::repartition()
+  {
+    TimerOutput::Scope t(timer, "repartition");
+    const types::particle_index n_before =
+      particle_handler.n_global_particles();
+    particle_handler.prepare_for_coarsening_and_refinement();
+    grid.triangulation.repartition();
+    particle_handler.unpack_after_coarsening_and_refinement();
+    grid.setup_partition_data();
+    setup_nodal_fields();
+    ++n_repartitions;
+    // No point may be lost on the way.
+    AssertThrow(particle_handler.n_global_particles() == n_before,
+                ExcMessage("Repartitioning changed the number of material "
+                           "points from " + std::to_string(n_before) +
+                           " to " +
+                           std::to_string(
+                             particle_handler.n_global_particles()) +
+                           "."));
   }
 
 
@@ -667,6 +707,9 @@ namespace MPM
                                   output_index++,
                                   mpi_communicator);
     const auto s = compute_statistics();
+    // Collective: every rank takes part, only rank 0 writes.
+    const auto   removed_points = Utilities::MPI::sum(n_lost_points, mpi_communicator);
+    const double removed_mass   = Utilities::MPI::sum(lost_mass, mpi_communicator);
     if (statistics_file.is_open())
       {
         statistics_file << std::setprecision(10) << s.time << ' ' << s.step
@@ -679,9 +722,7 @@ namespace MPM
                         << s.mean_speed;
         for (unsigned int d = 0; d < dim; ++d)
           statistics_file << ' ' << s.centre_of_mass[d];
-        statistics_file << ' '
-                        << Utilities::MPI::sum(n_lost_points, mpi_communicator)
-                        << ' ' << Utilities::MPI::sum(lost_mass, mpi_communicator)
+        statistics_file << ' ' << removed_points << ' ' << removed_mass
                         << '\n';
         statistics_file.flush();
       }
@@ -708,6 +749,10 @@ namespace MPM
     while (time < time_stepping.end_time * (1 - 1e-12))
       {
         do_time_step();
+        if (load_balancing.repartition_due(step,
+                                           particle_handler,
+                                           mpi_communicator))
+          repartition();
         const bool output_step =
           output_writer.output_due(time, time_step, time_stepping.end_time);
         for (auto &p : postprocessors)
@@ -751,6 +796,11 @@ namespace MPM
           << static_cast<double>(step) * particle_handler.n_global_particles() /
                wall
           << " particle-steps/s\n";
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+      pcout << "Load balance: " << n_repartitions
+            << " repartition(s); busiest rank holds "
+            << LoadBalancing<dim>::imbalance(particle_handler, mpi_communicator)
+            << " x the mean number of points.\n";
     const auto &located = point_relocation.statistics();
     if (located.n_points_mapped > 0)
       pcout << "Point location (rank 0): "

@@ -55,11 +55,13 @@ namespace MPM
     create();
 
     /**
-     * Distribute degrees of freedom and index sets again, e.g. after the
-     * triangulation was repartitioned.
+     * Everything that depends on which cells this rank owns or sees: the
+     * degrees of freedom, their index sets and the sizes of the locally
+     * relevant cells. Called by create(), and again after the
+     * triangulation was repartitioned or loaded from a checkpoint.
      */
     void
-    setup_dofs();
+    setup_partition_data();
 
     /**
      * Smallest edge length over the whole mesh.

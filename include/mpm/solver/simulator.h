@@ -15,6 +15,7 @@
 #include <mpm/material_points/point_relocation.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/output/output_writer.h>
+#include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/time_stepping.h>
@@ -169,6 +170,22 @@ namespace MPM
     void
     setup();
 
+    /**
+     * Everything that depends on the partition of the mesh among ranks:
+     * the nodal vectors and their ghost layout, the boundary nodes' frames
+     * and constraints, the point relocation's cell neighbourhoods. Called
+     * by setup() and after every repartition.
+     */
+    void
+    setup_nodal_fields();
+
+    /**
+     * Repartition the mesh by the cells' weights (LoadBalancing) and move
+     * the points with their cells; a collective call.
+     */
+    void
+    repartition();
+
     void
     do_time_step();
 
@@ -223,6 +240,8 @@ namespace MPM
     BoundaryConditions<dim>         boundary_conditions;
     TimeSteppingParameters<dim>     time_stepping;
     OutputWriter<dim>               output_writer;
+    LoadBalancing<dim>              load_balancing;
+    unsigned int                    n_repartitions = 0;
     std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
     std::vector<std::string>        postprocessor_names;
     bool                            error_on_lost_points = true;
