@@ -49,12 +49,39 @@ if(PRM)
     set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
     set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
   endif()
-  execute_process(
-    COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}"
-    WORKING_DIRECTORY ${WORKDIR}
-    RESULT_VARIABLE _rc
-    OUTPUT_FILE ${WORKDIR}/screen.txt
-    ERROR_VARIABLE _stderr)
+  # Steps, in the order of their lines (default: one run):
+  #  "# run: ARGS"      run mpm with these extra arguments; every run but
+  #                     the last must succeed, the last is the one judged;
+  #  "# truncate: FILE" cut the last 64 bytes off WORKDIR/FILE (a damaged
+  #                     checkpoint).
+  file(STRINGS ${PRM} _steps REGEX "^# (run|truncate):")
+  if(NOT _steps)
+    set(_steps "# run:")
+  endif()
+  list(LENGTH _steps _n_steps)
+  set(_i 0)
+  foreach(_step IN LISTS _steps)
+    math(EXPR _i "${_i} + 1")
+    if(_step MATCHES "^# truncate:[ ]*(.*)$")
+      execute_process(COMMAND truncate -s -64 ${WORKDIR}/${CMAKE_MATCH_1}
+        RESULT_VARIABLE _rc)
+      if(NOT _rc EQUAL 0)
+        message(FATAL_ERROR "${_name}: could not truncate ${CMAKE_MATCH_1}")
+      endif()
+      continue()
+    endif()
+    string(REGEX REPLACE "^# run:[ ]*" "" _extra "${_step}")
+    separate_arguments(_extra UNIX_COMMAND "${_extra}")
+    execute_process(
+      COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}" ${_extra}
+      WORKING_DIRECTORY ${WORKDIR}
+      RESULT_VARIABLE _rc
+      OUTPUT_FILE ${WORKDIR}/screen.txt
+      ERROR_VARIABLE _stderr)
+    if(_i LESS _n_steps AND NOT _rc EQUAL 0)
+      message(FATAL_ERROR "${_name}: step ${_i} (${_step}) exited with ${_rc}\n${_stderr}")
+    endif()
+  endforeach()
   if(_name MATCHES "^(bad_input|error)_")
     if(_rc EQUAL 0)
       message(FATAL_ERROR "${_name}: expected a non-zero exit code, got 0")

@@ -68,9 +68,13 @@ namespace MPM
         last_time = s.time;
         last_v    = v;
         if (output_step)
-          table << std::setw(12) << s.time << std::setw(14) << v
-                << std::setw(14) << exact << std::setw(14)
-                << (v - exact) / amplitude << '\n';
+          {
+            std::ostringstream line;
+            line << std::setw(12) << s.time << std::setw(14) << v
+                 << std::setw(14) << exact << std::setw(14)
+                 << (v - exact) / amplitude << '\n';
+            table += line.str();
+          }
       }
 
       void
@@ -81,7 +85,7 @@ namespace MPM
                   "(2 v0/pi) cos(omega t)\n"
                << "# time (s)   v_cm mpm (m/s)  v_cm exact (m/s)  error / "
                   "(2 v0/pi)\n"
-               << table.str();
+               << table;
         report << "max |v_cm error| / (2 v0/pi): " << max_error << '\n';
         if (crossings.size() >= 2)
           {
@@ -95,12 +99,34 @@ namespace MPM
           report << "period: fewer than two zero crossings of v_cm\n";
       }
 
+      void
+      save_state(std::ostream &out) const override
+      {
+        save_object(out, *this);
+      }
+
+      void
+      load_state(std::istream &in) override
+      {
+        load_object(in, *this);
+      }
+
+      /**
+       * The state accumulated over the run (checkpoints).
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar & omega & amplitude & max_error & last_time & last_v & crossings & table;
+      }
+
     private:
       double              length = 25, v0 = 0.1;
       double              omega = 1, amplitude = 1;
       double              max_error = 0, last_time = -1, last_v = 0;
       std::vector<double> crossings;
-      std::ostringstream  table;
+      std::string         table;
     };
 
 
@@ -195,6 +221,15 @@ namespace MPM
                << std::sqrt(sums[0] / sums[1]) << '\n';
       }
 
+      /// Compares the state at the end of the run only: nothing to keep.
+      void
+      save_state(std::ostream &) const override
+      {}
+
+      void
+      load_state(std::istream &) override
+      {}
+
     private:
       double height = 1, base = 0, base_layer = 0.1;
     };
@@ -244,9 +279,13 @@ namespace MPM
         max_momentum_error = std::max(max_momentum_error, momentum_error);
         max_energy_change  = std::max(max_energy_change, std::abs(energy_change));
         if (output_step)
-          table << std::setw(12) << s.time << std::setw(14) << mass_error
-                << std::setw(14) << momentum_error << std::setw(14)
-                << energy_change << '\n';
+          {
+            std::ostringstream line;
+            line << std::setw(12) << s.time << std::setw(14) << mass_error
+                 << std::setw(14) << momentum_error << std::setw(14)
+                 << energy_change << '\n';
+            table += line.str();
+          }
       }
 
       void
@@ -256,9 +295,31 @@ namespace MPM
                   "g t\n"
                << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t)  "
                   "energy change / max(|E0|, M0 g^2 t^2 / 2)\n"
-               << table.str() << "max mass error: " << max_mass_error
+               << table << "max mass error: " << max_mass_error
                << "\nmax momentum error: " << max_momentum_error
                << "\nmax energy change: " << max_energy_change << '\n';
+      }
+
+      void
+      save_state(std::ostream &out) const override
+      {
+        save_object(out, *this);
+      }
+
+      void
+      load_state(std::istream &in) override
+      {
+        load_object(in, *this);
+      }
+
+      /**
+       * The state accumulated over the run (checkpoints).
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar & mass0 & energy0 & time0 & momentum0 & max_mass_error & max_momentum_error & max_energy_change & table;
       }
 
     private:
@@ -266,7 +327,7 @@ namespace MPM
       Tensor<1, dim>     momentum0;
       double             max_mass_error = 0, max_momentum_error = 0,
                          max_energy_change = 0;
-      std::ostringstream table;
+      std::string        table;
     };
 
 
@@ -324,11 +385,13 @@ namespace MPM
         const auto s    = simulator.compute_statistics();
         x0              = s.centre_of_mass;
         t0              = s.time;
-        report_header << "## sliding block: theta = " << theta * 180 / M_PI
+        std::ostringstream header;
+        header << "## sliding block: theta = " << theta * 180 / M_PI
                       << " deg, mu = " << mu
                       << ", a = g (sin theta - mu cos theta) = "
                       << acceleration << " m/s^2"
                       << (acceleration == 0 ? " (sticks)" : "") << '\n';
+        report_header = header.str();
       }
 
       void
@@ -354,22 +417,26 @@ namespace MPM
             fit[4] += t * v;
           }
         if (output_step)
-          table << std::setw(10) << s.time << std::setw(14) << v
-                << std::setw(14) << v_exact << std::setw(14) << v_error
-                << std::setw(14) << d << std::setw(14) << d_exact
-                << std::setw(14) << d_error << '\n';
+          {
+            std::ostringstream line;
+            line << std::setw(10) << s.time << std::setw(14) << v
+                 << std::setw(14) << v_exact << std::setw(14) << v_error
+                 << std::setw(14) << d << std::setw(14) << d_exact
+                 << std::setw(14) << d_error << '\n';
+            table += line.str();
+          }
       }
 
       void
       write_report(const Simulator<dim> &, std::ostream &report) override
       {
         const bool sticks = acceleration == 0;
-        report << report_header.str()
+        report << report_header
                << "# time (s)  speed mpm (m/s)  exact (m/s)  "
                << (sticks ? "abs error (m/s)" : "rel error")
                << "  distance mpm (m)  exact (m)  "
                << (sticks ? "abs error (m)" : "rel error") << '\n'
-               << table.str() << "max " << (sticks ? "abs" : "relative")
+               << table << "max " << (sticks ? "abs" : "relative")
                << " speed error for t >= " << error_from
                << " s: " << max_v_error << "\nmax "
                << (sticks ? "abs" : "relative")
@@ -393,13 +460,35 @@ namespace MPM
           }
       }
 
+      void
+      save_state(std::ostream &out) const override
+      {
+        save_object(out, *this);
+      }
+
+      void
+      load_state(std::istream &in) override
+      {
+        load_object(in, *this);
+      }
+
+      /**
+       * The state accumulated over the run (checkpoints).
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar & acceleration & t0 & x0 & max_v_error & max_d_error & fit & table & report_header;
+      }
+
     private:
       double             theta = 0, error_from = 0.1, acceleration = 0, t0 = 0;
       std::string        bed;
       Point<dim>         x0;
       double             max_v_error = 0, max_d_error = 0;
       std::array<double, 5> fit{};
-      std::ostringstream table, report_header;
+      std::string        table, report_header;
     };
 
 

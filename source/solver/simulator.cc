@@ -1,5 +1,14 @@
 #include <deal.II/base/mpi.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
+#include <boost/serialization/vector.hpp>
+
+#include <chrono>
+#include <filesystem>
+
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
@@ -64,6 +73,7 @@ namespace MPM
     TimeSteppingParameters<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
     LoadBalancing<dim>::declare_parameters(prm);
+    Checkpointing<dim>::declare_parameters(prm);
     prm.enter_subsection("Postprocess");
     prm.declare_entry("List of postprocessors",
                       "",
@@ -107,6 +117,7 @@ namespace MPM
     time_stepping.parse_parameters(prm);
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
+    checkpointing.parse_parameters(prm, output_writer.directory());
     prm.enter_subsection("Postprocess");
     postprocessor_names = split_name_list(prm.get("List of postprocessors"),
                                           "Postprocess/List of postprocessors");
@@ -161,19 +172,35 @@ namespace MPM
           << " kg) left the mesh at (" << particle->get_location() << ")";
         lost_point_descriptions.push_back(s.str());
       });
-    point_generator.generate(grid,
-                             materials,
-                             time_stepping.gravity,
-                             particle_handler);
+    std::string state;
+    if (checkpointing.resume())
+      {
+        // The mesh with its partition and the points as they were.
+        state = checkpointing.read(grid.triangulation, particle_handler);
+        grid.setup_partition_data();
+        setup_nodal_fields();
+      }
+    else
+      point_generator.generate(grid,
+                               materials,
+                               time_stepping.gravity,
+                               particle_handler);
     // Gravity is given in the scene's frame, like everything else.
     time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
     // p4est's first partition balances cells; the work is where the points
     // are.
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+    if (!checkpointing.resume() &&
+        Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       repartition();
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
+    if (checkpointing.resume())
+      {
+        deserialize_state(state);
+        pcout << "Resumed from the checkpoint at step " << step
+              << ", t = " << time << " s\n";
+      }
     pcout << "dealii-mpm: " << dim << "D, "
           << grid.triangulation.n_global_active_cells() << " cells, "
           << stats.n_points << " material points, mass " << stats.mass
@@ -185,8 +212,20 @@ namespace MPM
         // Every run keeps the parameters it ran with beside its results.
         std::ofstream(output_writer.directory() + "parameters.prm")
           << parameters_text;
-        statistics_file.open(output_writer.directory() + "statistics");
-        statistics_file
+        if (checkpointing.resume())
+          {
+            // Lines written after the checkpoint (by the run that stopped
+            // or crashed) are dropped: they will be written again.
+            const std::string name = output_writer.directory() + "statistics";
+            if (std::filesystem::exists(name) &&
+                std::filesystem::file_size(name) > statistics_length)
+              std::filesystem::resize_file(name, statistics_length);
+            statistics_file.open(name, std::ios::app);
+          }
+        else
+          statistics_file.open(output_writer.directory() + "statistics");
+        if (!checkpointing.resume())
+          statistics_file
           << "# Columns: 1 time (s), 2 step, 3 time step (s), 4 points, 5 "
              "mass (kg), "
           << 6 << "-" << 5 + dim << " momentum (kg m/s), " << 6 + dim
@@ -219,6 +258,121 @@ namespace MPM
     active_dofs.clear();
     boundary_conditions.setup(grid, nodal_mass);
     point_relocation.initialize(grid);
+  }
+
+
+  namespace
+  {
+    std::string
+    join(const std::vector<std::string> &names)
+    {
+      std::string joined;
+      for (const auto &n : names)
+        joined += (joined.empty() ? "" : ", ") + n;
+      return joined;
+    }
+  } // namespace
+
+
+  template <int dim>
+  std::string
+  Simulator<dim>::serialize_state() const
+  {
+    // Collective parts first: every rank computes the same state.
+    const types::particle_index removed_points =
+      Utilities::MPI::sum(n_lost_points, mpi_communicator);
+    const double removed_mass = Utilities::MPI::sum(lost_mass, mpi_communicator);
+    const std::uint64_t n_points    = particle_handler.n_global_particles();
+    const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
+    const unsigned int  format      = 1;
+    const unsigned int  space_dim   = dim;
+    std::uint64_t       stats_bytes = 0;
+    if (statistics_file.is_open())
+      stats_bytes = const_cast<std::ofstream &>(statistics_file).tellp();
+    stats_bytes = Utilities::MPI::broadcast(mpi_communicator, stats_bytes, 0);
+
+    std::vector<std::string> postprocessor_states;
+    for (const auto &p : postprocessors)
+      {
+        std::ostringstream out;
+        p->save_state(out);
+        postprocessor_states.push_back(out.str());
+      }
+
+    std::ostringstream state;
+    {
+      boost::archive::binary_oarchive ar(state);
+      ar << format << space_dim << n_points << n_cells << time << step
+         << time_step << output_index << max_point_speed << removed_points
+         << removed_mass << n_repartitions << stats_bytes << output_writer
+         << postprocessor_names << postprocessor_states;
+    }
+    return state.str();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::deserialize_state(const std::string &state)
+  {
+    std::istringstream in(state);
+    boost::archive::binary_iarchive ar(in);
+    unsigned int  format = 0, space_dim = 0;
+    std::uint64_t n_points = 0, n_cells = 0;
+    types::particle_index removed_points = 0;
+    double                removed_mass   = 0;
+    std::vector<std::string> names, postprocessor_states;
+    ar >> format >> space_dim >> n_points >> n_cells;
+    check_input(format == 1 && space_dim == dim,
+                std::string("The checkpoint was written by another version "
+                           "of dealii-mpm or for another dimension."));
+    check_input(n_cells == grid.triangulation.n_global_active_cells(),
+                std::string("The checkpoint's mesh has " +
+                           std::to_string(n_cells) +
+                           " cells, the mesh of the parameters " +
+                           std::to_string(
+                             grid.triangulation.n_global_active_cells()) +
+                           ": resume with the parameters of the run."));
+    check_input(n_points == particle_handler.n_global_particles(),
+                std::string("The checkpoint holds " + std::to_string(n_points) +
+                           " material points, " +
+                           std::to_string(particle_handler.n_global_particles()) +
+                           " were read back."));
+    ar >> time >> step >> time_step >> output_index >> max_point_speed >>
+      removed_points >> removed_mass >> n_repartitions >> statistics_length >>
+      output_writer >> names >> postprocessor_states;
+    check_input(names == postprocessor_names,
+                std::string("The checkpoint was written with the "
+                           "postprocessors '" +
+                           join(names) +
+                           "'; 'Postprocess/List of postprocessors' must "
+                           "name the same to resume it."));
+    // The removed points are counted once, on rank 0.
+    const bool is_root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    n_lost_points      = is_root ? removed_points : 0;
+    lost_mass          = is_root ? removed_mass : 0;
+    for (unsigned int i = 0; i < postprocessors.size(); ++i)
+      {
+        std::istringstream p_in(postprocessor_states[i]);
+        postprocessors[i]->load_state(p_in);
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::write_checkpoint()
+  {
+    TimerOutput::Scope t(timer, "checkpoint");
+    const auto        start = std::chrono::steady_clock::now();
+    const std::size_t bytes =
+      checkpointing.write(grid.triangulation, particle_handler, serialize_state());
+    pcout << "Checkpoint at step " << step << ", t = " << time << " s: "
+          << bytes / 1e6 << " MB in "
+          << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                           start)
+               .count()
+          << " s\n";
   }
 
 
@@ -736,9 +890,15 @@ namespace MPM
     const auto wall_start = std::chrono::steady_clock::now();
     setup();
     output_writer.write_mesh(grid);
-    for (auto &p : postprocessors)
-      p->initialize(*this);
-    write_output(true);
+    // A resumed run's postprocessors read their state from the checkpoint
+    // and its output at the checkpoint's time was written before.
+    if (!checkpointing.resume())
+      {
+        for (auto &p : postprocessors)
+          p->initialize(*this);
+        write_output(true);
+      }
+    unsigned int steps_this_run = 0;
 
     double last_progress = 0;
     auto   wall_seconds  = [&]() {
@@ -758,6 +918,22 @@ namespace MPM
         for (auto &p : postprocessors)
           p->execute(*this, output_step);
         write_output(false);
+        ++steps_this_run;
+        if (time < time_stepping.end_time * (1 - 1e-12) &&
+            checkpointing.due(steps_this_run, mpi_communicator))
+          write_checkpoint();
+        if (checkpointing.stop_requested(steps_this_run) &&
+            time < time_stepping.end_time * (1 - 1e-12))
+          {
+            pcout << "Stopped after " << steps_this_run
+                  << " steps of this run (Checkpointing/Stop after steps) at "
+                     "step "
+                  << step << ", t = " << time
+                  << " s; continue with 'Checkpointing/Resume from "
+                     "checkpoint = true'. No report is written.\n";
+            timer.print_summary();
+            return;
+          }
 
         const double wall = wall_seconds();
         if (wall - last_progress >= output_writer.progress_interval() ||

@@ -75,6 +75,17 @@ namespace MPM
       return progress_seconds;
     }
 
+    /**
+     * What the writer remembers of the run (the last output time, the
+     * records of particles.pvd), for checkpoints.
+     */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int)
+    {
+      ar &last_output_time &pvd_records;
+    }
+
   private:
     std::string                               output_directory = "output";
     double                                    output_interval  = 0.1;

@@ -66,11 +66,41 @@ namespace MPM
       Point<2>
       bed_point(const double s) const;
 
+      void
+      save_state(std::ostream &out) const override
+      {
+        save_object(out, *this);
+      }
+
+      void
+      load_state(std::istream &in) override
+      {
+        load_object(in, *this);
+      }
+
+      /**
+       * The state accumulated over the run (checkpoints).
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &peak_speed &peak_time &last_time_above_stop &first_time_after
+          &end_speed &n_points_initial &samples;
+      }
+
     private:
       struct Sample
       {
         double time, s_front, s_tail, x_front, x_tail, mean_speed;
         double mean_velocity[2];
+
+        template <class Archive>
+        void
+        serialize(Archive &ar, const unsigned int)
+        {
+          ar &time &s_front &s_tail &x_front &x_tail &mean_speed &mean_velocity;
+        }
       };
 
       Sample

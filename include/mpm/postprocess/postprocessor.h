@@ -3,6 +3,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/array.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <memory>
 #include <ostream>
 #include <string>
@@ -57,7 +63,45 @@ namespace MPM
      */
     virtual void
     write_report(const Simulator<dim> &simulator, std::ostream &report) = 0;
+
+    /**
+     * Write what this postprocessor accumulated over the run (maxima,
+     * tables, reference values taken in initialize()) to a checkpoint. A
+     * resumed run calls load_state() instead of initialize(), so that its
+     * report is the report of an uninterrupted run. There is no default:
+     * a postprocessor that forgot its state would report only what it saw
+     * after the restart; one without state says so with an empty body.
+     * Use save_object()/load_object() with a serialize() member.
+     */
+    virtual void
+    save_state(std::ostream &out) const = 0;
+
+    virtual void
+    load_state(std::istream &in) = 0;
   };
+
+
+  /**
+   * Write @p object, which has a boost serialize() member, to @p out.
+   */
+  template <typename T>
+  void
+  save_object(std::ostream &out, const T &object)
+  {
+    boost::archive::binary_oarchive archive(out);
+    archive << object;
+  }
+
+  /**
+   * Read @p object written by save_object().
+   */
+  template <typename T>
+  void
+  load_object(std::istream &in, T &object)
+  {
+    boost::archive::binary_iarchive archive(in);
+    archive >> object;
+  }
 
 
   namespace Postprocessors

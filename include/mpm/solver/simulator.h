@@ -17,6 +17,7 @@
 #include <mpm/output/output_writer.h>
 #include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
+#include <mpm/restart/checkpointing.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/time_stepping.h>
 
@@ -180,6 +181,23 @@ namespace MPM
     setup_nodal_fields();
 
     /**
+     * Write a checkpoint of the run (Checkpointing); collective.
+     */
+    void
+    write_checkpoint();
+
+    /**
+     * The simulator's state that is not in the mesh or the points: time,
+     * step, statistics so far, the output writer's and the postprocessors'
+     * records. serialize_state() is the same on every rank.
+     */
+    std::string
+    serialize_state() const;
+
+    void
+    deserialize_state(const std::string &state);
+
+    /**
      * Repartition the mesh by the cells' weights (LoadBalancing) and move
      * the points with their cells; a collective call.
      */
@@ -241,6 +259,7 @@ namespace MPM
     TimeSteppingParameters<dim>     time_stepping;
     OutputWriter<dim>               output_writer;
     LoadBalancing<dim>              load_balancing;
+    Checkpointing<dim>              checkpointing;
     unsigned int                    n_repartitions = 0;
     std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
     std::vector<std::string>        postprocessor_names;
@@ -279,6 +298,8 @@ namespace MPM
     std::vector<std::string> lost_point_descriptions;
 
     std::ofstream      statistics_file;
+    /// Bytes of the statistics file at the checkpoint a run resumed from.
+    std::uint64_t      statistics_length = 0;
     mutable TimerOutput timer;
   };
 } // namespace MPM
