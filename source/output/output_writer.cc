@@ -34,6 +34,16 @@ namespace MPM
                         Patterns::Bool(),
                         "Write the material points (VTU/PVD) at output "
                         "times.");
+      prm.declare_entry("Particle format",
+                        "vtu",
+                        Patterns::Selection("vtu|hdf5"),
+                        "File format of the material points: 'vtu' (one "
+                        ".vtu per rank and a .pvtu per output time, "
+                        "particles.pvd for ParaView) or 'hdf5' (one "
+                        "particles_NNNNN.h5 per output time written by all "
+                        "ranks together, particles.xdmf for ParaView; for "
+                        "large runs: one file per step whatever the number "
+                        "of ranks, and smaller).");
       prm.declare_entry("Write mesh",
                         "true",
                         Patterns::Bool(),
@@ -58,6 +68,7 @@ namespace MPM
       output_interval      = prm.get_double("Output interval");
       write_particle_files = prm.get_bool("Write particles");
       write_mesh_file      = prm.get_bool("Write mesh");
+      hdf5                 = prm.get("Particle format") == "hdf5";
       progress_seconds     = prm.get_double("Progress interval");
     }
     prm.leave_subsection();
@@ -150,6 +161,23 @@ namespace MPM
 
     Particles::DataOut<dim> data_out;
     data_out.build_patches(particle_handler, property_names, interpretation);
+    if (hdf5)
+      {
+        // Positions and data in one file per output time, which all ranks
+        // write together; the XDMF file tells ParaView what is in them.
+        DataOutBase::DataOutFilter filter(
+          DataOutBase::DataOutFilterFlags(false, true));
+        data_out.write_filtered_data(filter);
+        const std::string file =
+          "particles_" + Utilities::int_to_string(output_index, 5) + ".h5";
+        data_out.write_hdf5_parallel(filter, output_directory + file, comm);
+        xdmf_entries.push_back(
+          data_out.create_xdmf_entry(filter, file, time, comm));
+        data_out.write_xdmf_file(xdmf_entries,
+                                 output_directory + "particles.xdmf",
+                                 comm);
+        return;
+      }
     const std::string file = data_out.write_vtu_with_pvtu_record(
       output_directory,
       "particles",

@@ -1,6 +1,7 @@
 #ifndef mpm_output_output_writer_h
 #define mpm_output_output_writer_h
 
+#include <deal.II/base/data_out_base.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <deal.II/particles/particle_handler.h>
@@ -83,7 +84,7 @@ namespace MPM
     void
     serialize(Archive &ar, const unsigned int)
     {
-      ar &last_output_time &pvd_records;
+      ar &last_output_time &pvd_records &xdmf_entries;
     }
 
   private:
@@ -94,6 +95,8 @@ namespace MPM
     double                                    progress_seconds     = 10;
     double                                    last_output_time     = -1e300;
     std::vector<std::pair<double, std::string>> pvd_records;
+    bool                                      hdf5 = false;
+    std::vector<XDMFEntry>                    xdmf_entries;
   };
 } // namespace MPM
 
