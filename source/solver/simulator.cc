@@ -252,6 +252,7 @@ namespace MPM
                            &nodal_velocity_new,
                            &nodal_acceleration})
       v->reinit(partitioner);
+    mark_locally_computed_fields();
     dof_is_active.assign(nodal_mass.locally_owned_size() +
                            partitioner->n_ghost_indices(),
                          0);
@@ -478,33 +479,40 @@ namespace MPM
   void
   Simulator<dim>::zero_nodal_fields()
   {
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
+    // Only the entries the previous step touched are non-zero: those of
+    // this rank's points (active_dofs, owned or ghost) and the owned
+    // entries other ranks added to in compress() (the partitioner's import
+    // indices). Clearing only them keeps the cost independent of the size
+    // of the empty mesh, on one rank or many.
+    const auto &imports = nodal_mass.get_partitioner()->import_indices();
+    for (NodalVector *v : {&nodal_mass,
+                           &nodal_momentum,
+                           &nodal_force,
+                           &nodal_velocity,
+                           &nodal_velocity_new,
+                           &nodal_acceleration})
       {
-        // Only the entries the previous step touched are non-zero: clearing
-        // them keeps the cost independent of the size of the empty mesh.
-        for (NodalVector *v : {&nodal_mass,
-                               &nodal_momentum,
-                               &nodal_force,
-                               &nodal_velocity,
-                               &nodal_velocity_new,
-                               &nodal_acceleration})
-          {
-            for (const unsigned int i : active_dofs)
-              v->local_element(i) = 0;
-            v->zero_out_ghost_values();
-          }
+        for (const unsigned int i : active_dofs)
+          v->local_element(i) = 0;
+        for (const auto &range : imports)
+          for (unsigned int i = range.first; i < range.second; ++i)
+            v->local_element(i) = 0;
+        v->zero_out_ghost_values();
       }
-    else
-      for (NodalVector *v : {&nodal_mass,
-                             &nodal_momentum,
-                             &nodal_force,
-                             &nodal_velocity,
-                             &nodal_velocity_new,
-                             &nodal_acceleration})
-        {
-          v->zero_out_ghost_values();
-          *v = 0;
-        }
+    mark_locally_computed_fields();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::mark_locally_computed_fields()
+  {
+    // Velocity and acceleration are computed by every rank for all nodes
+    // its points touch, ghosts included, from the summed mass, momentum and
+    // force: their ghost entries are valid without an exchange.
+    for (const NodalVector *v :
+         {&nodal_velocity, &nodal_velocity_new, &nodal_acceleration})
+      v->set_ghost_state(true);
   }
 
 
@@ -544,11 +552,11 @@ namespace MPM
     TimerOutput::Scope t(timer, "particle to grid");
     using Layout = PropertyLayout<dim>;
     nodal_momentum.zero_out_ghost_values();
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) == 1)
-      for (const unsigned int i : active_dofs)
+    for (const unsigned int i : active_dofs)
+      nodal_momentum.local_element(i) = 0;
+    for (const auto &range : nodal_momentum.get_partitioner()->import_indices())
+      for (unsigned int i = range.first; i < range.second; ++i)
         nodal_momentum.local_element(i) = 0;
-    else
-      nodal_momentum = 0;
     auto         point = particle_handler.begin();
     unsigned int k     = 0;
     for (const auto &cell : active_cells)

@@ -216,6 +216,13 @@ namespace MPM
     void
     zero_nodal_fields();
 
+    /**
+     * Flag the nodal velocity and acceleration vectors as holding valid
+     * ghost entries (each rank computes them for its ghost nodes too).
+     */
+    void
+    mark_locally_computed_fields();
+
     void
     map_mass_and_momentum();
 
