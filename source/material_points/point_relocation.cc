@@ -6,6 +6,7 @@
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
+#include <map>
 #include <array>
 
 namespace MPM
@@ -21,8 +22,9 @@ namespace MPM
       Patterns::Selection("incremental|sort"),
       "How points are found in the mesh after each step: 'incremental' "
       "updates each point's reference coordinates in its old cell and moves "
-      "only the points that left it (falling back to deal.II's full sort "
-      "when a point leaves this rank's cells or the mesh); 'sort' calls "
+      "only the points that left it (a point that enters a neighbouring "
+      "rank's cell is sent there; deal.II's full sort only when a point "
+      "goes beyond the ghost layer); 'sort' calls "
       "ParticleHandler::sort_particles_into_subdomains_and_cells() every "
       "step. Both give the same cells and coordinates to round-off.");
     prm.declare_entry("Inverse mapping",
@@ -89,6 +91,8 @@ namespace MPM
     std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
                         lost;
     std::vector<Move>   moves;
+    // Per destination rank: the points that moved into its cells.
+    std::map<unsigned int, std::vector<double>> sends;
     std::vector<double> properties;
     bool                need_full_sort = false;
 
@@ -153,8 +157,25 @@ namespace MPM
             lost.push_back(point);
             continue;
           }
+        if (location.cell->is_ghost())
+          {
+            // Into a cell of a neighbouring rank: sent there, with the
+            // cell's id, its reference coordinates and all properties.
+            auto &buffer = sends[location.cell->subdomain_id()];
+            for (unsigned int d = 0; d < dim; ++d)
+              buffer.push_back(x[d]);
+            for (unsigned int d = 0; d < dim; ++d)
+              buffer.push_back(location.xi[d]);
+            buffer.push_back(static_cast<double>(point->get_id()));
+            for (const unsigned int b : location.cell->id().template to_binary<dim>())
+              buffer.push_back(b);
+            const auto p = point->get_properties();
+            buffer.insert(buffer.end(), p.begin(), p.end());
+            continue;
+          }
         if (!location.cell->is_locally_owned())
           {
+            // Beyond the ghost layer: only deal.II's sort finds the owner.
             need_full_sort = true;
             break;
           }
@@ -167,14 +188,17 @@ namespace MPM
         properties.insert(properties.end(), p.begin(), p.end());
       }
 
-    // 3. Points that left this rank's cells: deal.II moves them to their
-    //    rank. One reduction decides for every rank whether to sort and
-    //    whether any rank moved points, because both branches below call
-    //    collective functions (the sort, update_cached_numbers()) that
-    //    every rank must enter.
-    const std::array<unsigned int, 2> local_flags{
-      {need_full_sort ? 1u : 0u, leavers.empty() ? 0u : 1u}};
-    std::array<unsigned int, 2> global_flags{};
+    // 3. One reduction decides for every rank whether deal.II's full sort
+    //    is needed (a point went beyond the ghost layer), whether any rank
+    //    moved points and whether any sends points to another rank: the
+    //    branches below call collective functions (the sort,
+    //    some_to_some(), update_cached_numbers()) that every rank must
+    //    enter.
+    const std::array<unsigned int, 3> local_flags{
+      {need_full_sort ? 1u : 0u,
+       leavers.empty() ? 0u : 1u,
+       sends.empty() ? 0u : 1u}};
+    std::array<unsigned int, 3> global_flags{};
     Utilities::MPI::max(ArrayView<const unsigned int>(local_flags),
                         comm,
                         ArrayView<unsigned int>(global_flags));
@@ -186,6 +210,16 @@ namespace MPM
       }
     if (global_flags[1] == 0)
       return;
+    // Only the points that crossed to a neighbour travel (point to point),
+    // not a sort of every point.
+    std::map<unsigned int, std::vector<double>> received;
+    if (global_flags[2] != 0)
+      {
+        for (const auto &[rank, buffer] : sends)
+          stats.n_points_sent +=
+            buffer.size() / (2 * dim + 5 + particle_handler.n_properties_per_particle());
+        received = Utilities::MPI::some_to_some(comm, sends);
+      }
     // Reported as deal.II's sort would report them, so that the owner of
     // the signal decides (error or removal).
     for (const auto &point : lost)
@@ -203,6 +237,30 @@ namespace MPM
         m.cell,
         ArrayView<const double>(properties.data() + m.first_property,
                                 n_properties));
+    const unsigned int record = 2 * dim + 5 + n_properties;
+    for (const auto &[rank, buffer] : received)
+      for (std::size_t r = 0; r + record <= buffer.size(); r += record)
+        {
+          const double *b = buffer.data() + r;
+          Point<dim>    x, xi;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              x[d]  = b[d];
+              xi[d] = b[dim + d];
+            }
+          const auto id = static_cast<types::particle_index>(b[2 * dim]);
+          CellId::binary_type binary;
+          for (unsigned int k = 0; k < 4; ++k)
+            binary[k] = static_cast<unsigned int>(b[2 * dim + 1 + k]);
+          const CellIterator cell(
+            grid->triangulation.create_cell_iterator(CellId(binary)));
+          particle_handler.insert_particle(
+            x,
+            xi,
+            id,
+            cell,
+            ArrayView<const double>(b + 2 * dim + 5, n_properties));
+        }
     // insert_particle() does not update the number of points that
     // remove_particles() decreased.
     particle_handler.update_cached_numbers();

@@ -989,7 +989,8 @@ namespace MPM
     if (located.n_points_mapped > 0)
       pcout << "Point location (rank 0): "
             << 100. * located.n_points_moved / located.n_points_mapped
-            << " % of the point-steps changed cell; "
+            << " % of the point-steps changed cell, "
+            << located.n_points_sent << " point(s) sent to another rank; "
             << located.n_full_sorts
             << " step(s) needed deal.II's full sort.\n";
     timer.print_summary();

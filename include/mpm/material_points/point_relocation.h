@@ -83,6 +83,8 @@ namespace MPM
     {
       unsigned long long n_points_mapped = 0;
       unsigned long long n_points_moved  = 0;
+      /// Points sent to the rank that owns their new cell.
+      unsigned long long n_points_sent   = 0;
       unsigned long long n_full_sorts    = 0;
     };
 
