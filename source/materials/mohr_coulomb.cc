@@ -331,7 +331,7 @@ namespace MPM
           // the flume's run time.
           const double c = 0.5 * (trial[0][0] + trial[1][1]);
           const double h = 0.5 * (trial[0][0] - trial[1][1]);
-          const double r = std::hypot(h, trial[0][1]);
+          const double r = std::sqrt(h * h + trial[0][1] * trial[0][1]);
           // return_principal() takes them in descending order.
           const std::array<double, 3> unsorted = {{c + r, c - r, trial[2][2]}};
           std::array<unsigned int, 3> order    = {{0, 1, 2}};
@@ -352,16 +352,19 @@ namespace MPM
           for (unsigned int i = 0; i < 3; ++i)
             returned[order[i]] = s[i];
           s = returned;
-          // Direction of the larger in-plane value: (cos a, sin a) with
-          // tan 2a = 2 sigma_xy / (sigma_xx - sigma_yy). The returned
-          // stress is coaxial with the trial stress.
-          const double two_a = std::atan2(trial[0][1], h);
-          const double cs = std::cos(0.5 * two_a), sn = std::sin(0.5 * two_a);
-          stress          = 0;
-          stress[0][0]    = s[0] * cs * cs + s[1] * sn * sn;
-          stress[1][1]    = s[0] * sn * sn + s[1] * cs * cs;
-          stress[0][1]    = (s[0] - s[1]) * cs * sn;
-          stress[2][2]    = s[2];
+          // The returned stress is coaxial with the trial stress: with
+          // the direction (cos a, sin a) of the larger in-plane value,
+          // cos 2a = h / r and sin 2a = sigma_xy / r, so no angle is
+          // needed. (r = 0: every in-plane direction is principal.)
+          const double cos_2a = r > 0 ? h / r : 1.;
+          const double sin_2a = r > 0 ? trial[0][1] / r : 0.;
+          const double centre = 0.5 * (s[0] + s[1]);
+          const double radius = 0.5 * (s[0] - s[1]);
+          stress              = 0;
+          stress[0][0]        = centre + radius * cos_2a;
+          stress[1][1]        = centre - radius * cos_2a;
+          stress[0][1]        = radius * sin_2a;
+          stress[2][2]        = s[2];
           return;
         }
 
