@@ -550,6 +550,16 @@ namespace MPM
   }
 
 
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::does_work() const
+  {
+    return std::any_of(specs.begin(), specs.end(), [](const Spec &spec) {
+      return spec.type == Type::velocity && spec.local_velocity.norm() > 0;
+    });
+  }
+
+
   template class BoundaryConditions<2>;
   template class BoundaryConditions<3>;
 } // namespace MPM

@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace MPM
@@ -74,6 +75,7 @@ namespace MPM
     OutputWriter<dim>::declare_parameters(prm);
     LoadBalancing<dim>::declare_parameters(prm);
     Checkpointing<dim>::declare_parameters(prm);
+    StabilityMonitor<dim>::declare_parameters(prm);
     prm.enter_subsection("Postprocess");
     prm.declare_entry("List of postprocessors",
                       "",
@@ -117,6 +119,7 @@ namespace MPM
     time_stepping.parse_parameters(prm);
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
+    stability_monitor.parse_parameters(prm);
     checkpointing.parse_parameters(prm, output_writer.directory());
     prm.enter_subsection("Postprocess");
     postprocessor_names = split_name_list(prm.get("List of postprocessors"),
@@ -195,6 +198,7 @@ namespace MPM
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
+    stability_monitor.initialize(stats, boundary_conditions.does_work());
     if (checkpointing.resume())
       {
         deserialize_state(state);
@@ -696,9 +700,92 @@ namespace MPM
               x[c] += dt * v_new[c];
             }
           point->set_location(x);
-          v_max2 = std::max(v_max2, read_vector<dim>(&props[Layout::velocity]).norm_square());
+          const double speed2 =
+            read_vector<dim>(&props[Layout::velocity]).norm_square();
+          v_max2 = std::max(v_max2, speed2);
+          // Blow-up check at the price of one sum: a NaN or infinity in the
+          // velocity, position or stress makes it non-finite.
+          double check = speed2 + x[0] + x[dim - 1];
+          for (unsigned int c = 0; c < 6; ++c)
+            check += props[Layout::stress + c];
+          if (!std::isfinite(check) && first_bad_point.empty())
+            {
+              std::ostringstream s;
+              s << "material point " << point->get_id() << " at ("
+                << point->get_location() << ") in cell "
+                << point->get_surrounding_cell()->id().to_string()
+                << " has a non-finite velocity, position or stress";
+              first_bad_point = s.str();
+            }
         }
-    max_point_speed = Utilities::MPI::max(std::sqrt(v_max2), mpi_communicator);
+    // A bad point makes the largest speed infinite on every rank: the
+    // reduction that exists anyway tells all ranks to stop.
+    max_point_speed = Utilities::MPI::max(
+      first_bad_point.empty() ? std::sqrt(v_max2) :
+                                std::numeric_limits<double>::infinity(),
+      mpi_communicator);
+    if (!std::isfinite(max_point_speed))
+      stop_on_blow_up("a value became infinite or NaN.", true);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::stop_on_blow_up(const std::string &reason,
+                                  const bool         during_step)
+  {
+    using Layout = PropertyLayout<dim>;
+    // Which point: the first bad one, or else the fastest.
+    std::string here = first_bad_point;
+    if (here.empty())
+      {
+        double fastest = -1;
+        for (const auto &point : particle_handler)
+          {
+            const auto v =
+              read_vector<dim>(&point.get_properties()[Layout::velocity]);
+            if (v.norm() > fastest)
+              {
+                fastest = v.norm();
+                std::ostringstream s;
+                s << "the fastest material point, " << point.get_id()
+                  << " at (" << point.get_location() << ") in cell "
+                  << point.get_surrounding_cell()->id().to_string()
+                  << ", moves at " << v.norm() << " m/s";
+                here = s.str();
+              }
+          }
+        const double global = Utilities::MPI::max(fastest, mpi_communicator);
+        if (fastest < global)
+          here.clear();
+      }
+    // The grid-to-particle check stops inside a step, the energy check
+    // after it.
+    std::ostringstream when_stream;
+    if (during_step)
+      when_stream << "in step " << step + 1 << " (from t = " << time
+                  << " s to " << time + time_step << " s)";
+    else
+      when_stream << "by step " << step << " (t = " << time << " s)";
+    const std::string when = when_stream.str();
+    std::string       point_description;
+    for (const auto &d : Utilities::MPI::all_gather(mpi_communicator, here))
+      if (!d.empty())
+        {
+          point_description = d;
+          break;
+        }
+    write_output(true);
+    throw std::runtime_error(
+      "The run became unstable " + when + ": " + reason + " First: " +
+      point_description + ". The state at this step was written to " +
+      output_writer.directory() +
+      " (statistics, and the particle files if 'Output/Write particles' is "
+      "on). " +
+      StabilityMonitor<dim>::advice(time_step,
+                                    materials.max_wave_speed(),
+                                    active_cell_size,
+                                    time_stepping.adaptive));
   }
 
 
@@ -917,6 +1004,13 @@ namespace MPM
     while (time < time_stepping.end_time * (1 - 1e-12))
       {
         do_time_step();
+        if (stability_monitor.energy_check_due(step))
+          {
+            const std::string problem =
+              stability_monitor.check_energy(compute_statistics());
+            if (!problem.empty())
+              stop_on_blow_up(problem, false);
+          }
         if (load_balancing.repartition_due(step,
                                            particle_handler,
                                            mpi_communicator))

@@ -176,6 +176,14 @@ namespace MPM
     void
     check_boundary_ids(const BackgroundGrid<dim> &grid) const;
 
+    /**
+     * Whether a boundary can do work on the material (a prescribed,
+     * non-zero velocity): the energy of the scene is then not bounded by
+     * what it had at the start.
+     */
+    bool
+    does_work() const;
+
   private:
     enum class Type
     {

@@ -18,6 +18,7 @@
 #include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/restart/checkpointing.h>
+#include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/time_stepping.h>
 
@@ -181,6 +182,15 @@ namespace MPM
     setup_nodal_fields();
 
     /**
+     * Stop the run because it became unstable (@p reason; @p during_step:
+     * found inside the step, not after it): write one last
+     * output for inspection, then throw with the step, time, the first bad
+     * point (or the fastest one) and what to change. Collective.
+     */
+    [[noreturn]] void
+    stop_on_blow_up(const std::string &reason, const bool during_step);
+
+    /**
      * Write a checkpoint of the run (Checkpointing); collective.
      */
     void
@@ -266,6 +276,9 @@ namespace MPM
     TimeSteppingParameters<dim>     time_stepping;
     OutputWriter<dim>               output_writer;
     LoadBalancing<dim>              load_balancing;
+    StabilityMonitor<dim>           stability_monitor;
+    /// This rank's first point with a non-finite value this step, if any.
+    std::string                     first_bad_point;
     Checkpointing<dim>              checkpointing;
     unsigned int                    n_repartitions = 0;
     std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;

@@ -4,6 +4,8 @@
 #include <deal.II/base/tensor.h>
 #include <deal.II/base/types.h>
 
+#include <deal.II/particles/property_pool.h>
+
 namespace MPM
 {
   using namespace dealii;
