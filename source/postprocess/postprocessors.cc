@@ -2,6 +2,7 @@
 
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/postprocess/column_collapse.h>
 #include <mpm/postprocess/flume.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
@@ -496,7 +497,7 @@ namespace MPM
     names()
     {
       return "vibrating bar|self-weight column|conservation|sliding block|"
-             "flume";
+             "flume|column collapse";
     }
 
 
@@ -520,6 +521,9 @@ namespace MPM
       prm.enter_subsection("flume");
       Flume<dim>::declare_parameters(prm);
       prm.leave_subsection();
+      prm.enter_subsection("column collapse");
+      ColumnCollapse<dim>::declare_parameters(prm);
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -539,6 +543,8 @@ namespace MPM
         p = std::make_unique<SlidingBlock<dim>>();
       else if (name == "flume")
         p = std::make_unique<Flume<dim>>();
+      else if (name == "column collapse")
+        p = std::make_unique<ColumnCollapse<dim>>();
       else
         throw InputError("Unknown postprocessor '" + name + "'.");
       prm.enter_subsection("Postprocess");

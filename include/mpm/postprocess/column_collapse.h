@@ -1,0 +1,86 @@
+#ifndef mpm_postprocess_column_collapse_h
+#define mpm_postprocess_column_collapse_h
+
+#include <mpm/postprocess/postprocessor.h>
+
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  namespace Postprocessors
+  {
+    /**
+     * Collapse of a granular column on a flat rough base (2D, the base at
+     * y = 'Base elevation', a wall at x = 'Wall position', the column of
+     * width L0 and height H0 against it, flowing towards +x): the classical
+     * test of granular flow models against the runout scalings of
+     * experiments (doc/column_collapse.md).
+     *
+     * At output times: the front (the largest x of a point plus half its
+     * spacing sqrt(V_p), i.e. the edge of the deposit) and the height (the
+     * largest y plus half a spacing) and the mean speed. At the end: the
+     * runout (L_inf - L0) / L0 and the height H_inf / L0 of the final
+     * state against the aspect ratio a = H0 / L0, and when the mean speed
+     * fell below 'Stop speed' for good.
+     */
+    template <int dim>
+    class ColumnCollapse : public Postprocessor<dim>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &prm);
+
+      void
+      parse_parameters(ParameterHandler &prm) override;
+
+      void
+      initialize(const Simulator<dim> &simulator) override;
+
+      void
+      execute(const Simulator<dim> &simulator, const bool output_step) override;
+
+      void
+      write_report(const Simulator<dim> &simulator,
+                   std::ostream         &report) override;
+
+      void
+      save_state(std::ostream &out) const override
+      {
+        save_object(out, *this);
+      }
+
+      void
+      load_state(std::istream &in) override
+      {
+        load_object(in, *this);
+      }
+
+      /**
+       * The state accumulated over the run (checkpoints).
+       */
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &table &last_time_above_stop &front &height &mean_speed;
+      }
+
+    private:
+      /**
+       * Front, height and mean speed now (collective).
+       */
+      std::array<double, 3>
+      measure(const Simulator<dim> &simulator) const;
+
+      double width = 0.1, initial_height = 0.2, base = 0, wall = 0,
+             stop_speed = 0.01;
+
+      std::string table;
+      double      last_time_above_stop = 0;
+      double      front = 0, height = 0, mean_speed = 0;
+    };
+  } // namespace Postprocessors
+} // namespace MPM
+
+#endif

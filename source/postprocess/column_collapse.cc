@@ -1,0 +1,146 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/material_points/property_layout.h>
+#include <mpm/postprocess/column_collapse.h>
+#include <mpm/solver/simulator.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace MPM
+{
+  namespace Postprocessors
+  {
+    template <int dim>
+    void
+    ColumnCollapse<dim>::declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry("Initial width",
+                        "0.1",
+                        Patterns::Double(0),
+                        "L0: width of the column at rest, in m.");
+      prm.declare_entry("Initial height",
+                        "0.2",
+                        Patterns::Double(0),
+                        "H0: height of the column at rest, in m.");
+      prm.declare_entry("Base elevation",
+                        "0",
+                        Patterns::Double(),
+                        "y of the base, in m.");
+      prm.declare_entry("Wall position",
+                        "0",
+                        Patterns::Double(),
+                        "x of the wall the column leans on, in m; the "
+                        "column flows towards +x.");
+      prm.declare_entry("Stop speed",
+                        "0.01",
+                        Patterns::Double(0),
+                        "The flow has stopped when the mean point speed "
+                        "stays below this (m/s).");
+    }
+
+
+    template <int dim>
+    void
+    ColumnCollapse<dim>::parse_parameters(ParameterHandler &prm)
+    {
+      width          = prm.get_double("Initial width");
+      initial_height = prm.get_double("Initial height");
+      base           = prm.get_double("Base elevation");
+      wall           = prm.get_double("Wall position");
+      stop_speed     = prm.get_double("Stop speed");
+    }
+
+
+    template <int dim>
+    std::array<double, 3>
+    ColumnCollapse<dim>::measure(const Simulator<dim> &simulator) const
+    {
+      using Layout = PropertyLayout<dim>;
+      // The edge of the deposit: a point stands for a square of side
+      // sqrt(V_p) (2D) around it.
+      std::array<double, 2> extremes{{-1e300, -1e300}};
+      double                speed_sum = 0;
+      for (const auto &point : simulator.get_particle_handler())
+        {
+          const auto   props = point.get_properties();
+          const double half  = 0.5 * std::sqrt(props[Layout::volume]);
+          const auto   x     = point.get_location();
+          extremes[0]        = std::max(extremes[0], x[0] + half);
+          extremes[1]        = std::max(extremes[1], x[dim - 1] + half);
+          speed_sum += read_vector<dim>(&props[Layout::velocity]).norm();
+        }
+      const MPI_Comm comm = simulator.get_mpi_communicator();
+      Utilities::MPI::max(ArrayView<const double>(extremes),
+                          comm,
+                          ArrayView<double>(extremes));
+      const double n = simulator.get_particle_handler().n_global_particles();
+      return {{extremes[0] - wall,
+               extremes[1] - base,
+               Utilities::MPI::sum(speed_sum, comm) / std::max(n, 1.)}};
+    }
+
+
+    template <int dim>
+    void
+    ColumnCollapse<dim>::initialize(const Simulator<dim> &simulator)
+    {
+      execute(simulator, true);
+    }
+
+
+    template <int dim>
+    void
+    ColumnCollapse<dim>::execute(const Simulator<dim> &simulator,
+                                 const bool            output_step)
+    {
+      // The mean speed at every step (for the stop time), the front and
+      // height at output times only.
+      const auto m = measure(simulator);
+      mean_speed   = m[2];
+      if (mean_speed >= stop_speed)
+        last_time_above_stop = simulator.get_time();
+      front  = m[0];
+      height = m[1];
+      if (output_step)
+        {
+          std::ostringstream line;
+          line << std::setw(10) << simulator.get_time() << std::setw(14)
+               << front << std::setw(14) << height << std::setw(14)
+               << mean_speed << '\n';
+          table += line.str();
+        }
+    }
+
+
+    template <int dim>
+    void
+    ColumnCollapse<dim>::write_report(const Simulator<dim> &simulator,
+                                      std::ostream         &report)
+    {
+      const double a = initial_height / width;
+      report << "## column collapse: L0 = " << width
+             << " m, H0 = " << initial_height << " m, a = H0/L0 = " << a
+             << "\n# time (s)  front L (m)  height H (m)  mean speed (m/s)\n"
+             << table;
+      report << "runout (L_inf - L0)/L0: " << (front - width) / width
+             << "\nfinal height H_inf/L0: " << height / width
+             << "\nfinal height H_inf/H0: " << height / initial_height
+             << "\nmean speed at the end (m/s): " << mean_speed << '\n';
+      if (mean_speed < stop_speed)
+        report << "mean speed below " << stop_speed << " m/s from t = "
+               << last_time_above_stop << " s on\n";
+      else
+        report << "still flowing at t = " << simulator.get_time()
+               << " s: the runout is not final\n";
+      // Lube et al. (2005) as commonly quoted (doc/column_collapse.md).
+      report << "Lube et al. 2005 (as quoted): "
+             << (a < 2.3 ? 1.2 * a : 1.9 * std::pow(a, 2. / 3.)) << '\n';
+    }
+
+
+    template class ColumnCollapse<2>;
+    template class ColumnCollapse<3>;
+  } // namespace Postprocessors
+} // namespace MPM
