@@ -5,7 +5,7 @@
 set -euo pipefail
 
 MPM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin)
+MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin python3-matplotlib)
 
 mpm_install_packages() {
   local missing=()
