@@ -270,8 +270,12 @@ namespace MPM
         const double   t = s.time - time0;
         const Tensor<1, dim> expected = momentum0 + mass0 * g * t;
         const double mass_error = std::abs(s.mass - mass0) / mass0;
+        // Relative to the impulse of gravity, or without gravity to the
+        // initial momentum.
+        const double momentum_scale =
+          g.norm() > 0 ? mass0 * g.norm() * t : momentum0.norm();
         const double momentum_error =
-          (s.momentum - expected).norm() / std::max(1e-300, mass0 * g.norm() * t);
+          (s.momentum - expected).norm() / std::max(1e-300, momentum_scale);
         const double energy = s.kinetic_energy + s.strain_energy +
                               s.gravitational_potential_energy;
         const double energy_scale = std::max(std::abs(energy0), mass0 * g.norm() * g.norm() * t * t / 2);
@@ -294,7 +298,7 @@ namespace MPM
       {
         report << "## conservation: mass and momentum against M0 and p0 + M0 "
                   "g t\n"
-               << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t)  "
+               << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t or |p0| if g = 0)  "
                   "energy change / max(|E0|, M0 g^2 t^2 / 2)\n"
                << table << "max mass error: " << max_mass_error
                << "\nmax momentum error: " << max_momentum_error
