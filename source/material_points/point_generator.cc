@@ -6,6 +6,8 @@
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/grid_tools_cache.h>
 
+#include <deal.II/lac/vector.h>
+
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/point_generator.h>
@@ -232,15 +234,48 @@ namespace MPM
                                  "': expected a number (m) or 'auto'.");
               }
           }
-        prm.enter_subsection("Initial velocity");
-        r.initial_velocity = std::make_shared<Functions::ParsedFunction<dim>>(dim);
-        r.initial_velocity->parse_parameters(prm);
-        prm.leave_subsection();
-        prm.enter_subsection("Initial stress function");
-        r.initial_stress_function =
-          std::make_shared<Functions::ParsedFunction<dim>>(6);
-        r.initial_stress_function->parse_parameters(prm);
-        prm.leave_subsection();
+        // A function is parsed, and evaluated once at the origin, here: a
+        // typo in an expression or a constant is an input error naming the
+        // parameter, not a parser error deep in the run (or, for some
+        // malformed constants, an exception that is not a std::exception,
+        // found by the fuzzer).
+        const auto parse_function =
+          [&](const std::string &subsection, const unsigned int n_components) {
+            prm.enter_subsection(subsection);
+            auto f = std::make_shared<Functions::ParsedFunction<dim>>(
+              n_components);
+            const std::string where = path + subsection + "/Function expression = '" +
+                                      prm.get("Function expression") + "'";
+            try
+              {
+                f->parse_parameters(prm);
+                Vector<double> values(n_components);
+                f->vector_value(Point<dim>(), values);
+              }
+            catch (const ExceptionBase &e)
+              {
+                // deal.II's own text, without its source location and
+                // stack trace.
+                std::ostringstream info;
+                e.print_info(info);
+                throw InputError(where + " (with its 'Function constants') "
+                                 "cannot be evaluated:\n" + info.str());
+              }
+            catch (const std::exception &e)
+              {
+                throw InputError(where + " (with its 'Function constants') "
+                                 "cannot be evaluated: " + e.what());
+              }
+            catch (...)
+              {
+                throw InputError(where + " (with its 'Function constants') "
+                                 "cannot be parsed.");
+              }
+            prm.leave_subsection();
+            return f;
+          };
+        r.initial_velocity        = parse_function("Initial velocity", dim);
+        r.initial_stress_function = parse_function("Initial stress function", 6);
         prm.leave_subsection();
         regions.push_back(r);
       }
