@@ -13,8 +13,10 @@
 #include <mpm/grid/background_grid.h>
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
 namespace MPM
 {
@@ -40,11 +42,32 @@ namespace MPM
       in >> version;
       if (!in || version >= 3)
         return;
+      // A count that the file cannot hold (each node or element takes at
+      // least 8 characters) would make GridIn allocate for it: the fuzzer
+      // found a node count of 4.6e10 that asked for 64 GB.
+      const auto file_size = std::filesystem::file_size(file_name);
+      const auto check_count = [&](const std::string &section,
+                                   const std::string &count_text) {
+        long long count = -1;
+        std::istringstream(count_text) >> count;
+        check_input(count >= 0 &&
+                      static_cast<unsigned long long>(count) <= file_size / 8,
+                    "The mesh file '" + file_name +
+                      "' (parameter 'Mesh/Gmsh file'): its " + section +
+                      " section declares " +
+                      (count >= 0 ? std::to_string(count) :
+                                    "'" + Utilities::trim(count_text) + "'") +
+                      " entries, more than its " + std::to_string(file_size) +
+                      " bytes can hold: the file is damaged.");
+      };
       while (std::getline(in, line) && Utilities::trim(line) != "$Elements")
-        ;
+        if (Utilities::trim(line) == "$Nodes" && std::getline(in, line))
+          check_count("$Nodes", line);
       std::size_t n_elements = 0;
-      if (!(in >> n_elements))
+      if (!std::getline(in, line))
         return;
+      check_count("$Elements", line);
+      n_elements = std::stoull(Utilities::trim(line));
       std::map<std::pair<long, long>, unsigned int> edge_count;
       const std::string where = "The mesh file '" + file_name + "' (parameter "
                                 "'Mesh/Gmsh file'): element ";
