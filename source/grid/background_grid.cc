@@ -168,10 +168,13 @@ namespace MPM
         Patterns::Double(0, 0.45),
         "Move every interior vertex by a random vector of length up to this "
         "fraction of its shortest adjacent edge (GridTools::distort_random, "
-        "fixed seed, boundary vertices kept), after the global refinements: "
+        "fixed seed, boundary vertices kept), before the global refinements: "
         "a mesh of irregular quadrilaterals from any mesh, to test that "
-        "results do not depend on the cells' shape. 0.3 gives interior "
-        "angles between roughly 40 and 140 degrees.");
+        "results do not depend on the cells' shape. Refining a distorted "
+        "mesh keeps its distortion at every level, the usual set-up of "
+        "convergence studies on quadrilaterals. 0.3 gives interior angles "
+        "between roughly 40 and 140 degrees; above about 0.35 some cells "
+        "become non-convex, which is an input error.");
       prm.declare_entry(
         "Scene rotation angle",
         "0",
@@ -254,9 +257,15 @@ namespace MPM
                              "' failed: " + Utilities::trim(s.str()));
           }
       }
-    triangulation.refine_global(n_global_refinements);
+    // Perturb the coarse mesh, then refine: each refinement halves h and
+    // keeps the cells' shapes (a sequence of meshes for a convergence
+    // study). Perturbing after refinement would distort every level anew,
+    // and points then sit close to the edges of thin cells and cross them.
     if (vertex_perturbation > 0)
       GridTools::distort_random(vertex_perturbation, triangulation, true);
+    triangulation.refine_global(n_global_refinements);
+
+    check_cell_geometry();
 
     rotation = unit_symmetric_tensor<dim>();
     if (rotation_angle != 0)
@@ -271,6 +280,77 @@ namespace MPM
       }
 
     setup_partition_data();
+  }
+
+
+  template <int dim>
+  void
+  BackgroundGrid<dim>::check_cell_geometry() const
+  {
+    // Smallest sine of a vertex angle (2D; the scaled Jacobian in 3D)
+    // accepted: below it the cell is degenerate to round-off.
+    constexpr double min_scaled_jacobian = 1e-10;
+    std::string      message;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            // Jacobian of the multilinear map at vertex v: column d is the
+            // edge to the neighbour along reference direction d (deal.II
+            // numbers vertices lexicographically).
+            Tensor<2, dim> jacobian;
+            double         edge_lengths = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const unsigned int w    = v ^ (1u << d);
+                const double       sign = (v & (1u << d)) ? -1. : 1.;
+                const Tensor<1, dim> edge =
+                  sign * (cell->vertex(w) - cell->vertex(v));
+                for (unsigned int a = 0; a < dim; ++a)
+                  jacobian[a][d] = edge[a];
+                edge_lengths *= edge.norm();
+              }
+            const double scaled =
+              edge_lengths > 0 ? determinant(jacobian) / edge_lengths : 0;
+            if (scaled > min_scaled_jacobian)
+              continue;
+            std::ostringstream s;
+            s << "The background mesh ("
+              << (source == "gmsh" ? "file '" + mesh_file + "'" :
+                                     "generator '" + generator_name + "'")
+              << ") has a cell whose isoparametric map cannot be inverted: "
+              << "the cell with vertices";
+            // In 2D, counter-clockwise (deal.II numbers them
+            // lexicographically).
+            for (unsigned int i = 0; i < cell->n_vertices(); ++i)
+              {
+                const unsigned int u = (dim == 2 && i >= 2) ? 5 - i : i;
+                s << (i == 0 ? " (" : ", (") << cell->vertex(u) << ')';
+              }
+            s << " has a Jacobian determinant of " << determinant(jacobian)
+              << " at vertex (" << cell->vertex(v) << ") ("
+              << (scaled < -min_scaled_jacobian ? "negative" : "zero")
+              << ": the cell is "
+              << (dim == 2 ? "non-convex, self-intersecting or of zero area" :
+                             "inverted or degenerate")
+              << "). Material points could not be located in it. Move the "
+                 "vertex so that every cell is convex (in Gmsh, e.g. "
+                 "Mesh.Optimize = 1, or look at the cell near this vertex)"
+              << (vertex_perturbation > 0 ?
+                    ", or lower 'Mesh/Random vertex perturbation'" :
+                    "")
+              << '.';
+            message = s.str();
+            break;
+          }
+        if (!message.empty())
+          break;
+      }
+    for (const auto &m :
+         Utilities::MPI::all_gather(mpi_communicator, message))
+      check_input(m.empty(), m);
   }
 
 

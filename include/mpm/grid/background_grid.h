@@ -138,6 +138,21 @@ namespace MPM
     void
     create_subdivided_hyper_rectangle();
 
+    /**
+     * Stop with an InputError if a cell's isoparametric map is not
+     * invertible: a non-convex (arrowhead), self-intersecting or
+     * zero-area quadrilateral. The inverse mapping of the material points
+     * and the shape function gradients divide by the Jacobian determinant,
+     * which changes sign inside such a cell; deal.II reads these meshes
+     * without complaint (it only reorients clockwise cells). For a
+     * multilinear cell the determinant is positive everywhere if it is
+     * positive at every vertex, so the check is exact and costs one
+     * determinant per vertex. Every rank checks its own cells; all stop
+     * with the same message.
+     */
+    void
+    check_cell_geometry() const;
+
     MPI_Comm     mpi_communicator;
     std::string  source;
     std::string  mesh_file;

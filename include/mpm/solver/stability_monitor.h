@@ -19,8 +19,8 @@ namespace MPM
    *  - a non-finite value (velocity, position or stress of a point), found
    *    in the grid-to-particle loop at no extra cost (the Simulator checks
    *    it every step);
-   *  - kinetic energy growing without a source: every 'Energy check
-   *    interval' steps, the kinetic energy must not exceed 'Energy growth
+   *  - energy growing without a source: every 'Energy check interval'
+   *    steps, the kinetic + strain energy must not exceed 'Energy growth
    *    factor' times the energy the scene can have released, E_available =
    *    (kinetic + strain energy at the start) + (gravitational potential
    *    energy released since). Friction and plasticity only dissipate, so a
