@@ -1,53 +1,95 @@
 #!/usr/bin/env bash
-# Speed against error: the vibrating bar (prm/vibrating_bar.prm, analytical
-# centre-of-mass velocity) with one parameter varied at a time from the
-# shipped case - cell size, points per cell, CFL number, update scheme, FLIP
-# fraction - recording the wall time of the steps and the errors. Writes
-# doc/speed_error.csv and doc/speed_error.png (error against wall time, one
-# curve per parameter). Release build, one core.
-# Usage: scripts/speed_error_sweep.sh
+# Speed against error: runs scenes with one parameter varied at a time from
+# the shipped case (command-line overrides of the scene's .prm), and records
+# for each run the wall time of the steps, the particle-steps per second,
+# the peak memory (resident set, from /usr/bin/time) and the error against
+# the scene's reference:
+#   vibrating_bar       analytical centre-of-mass velocity (max error / amplitude)
+#   self_weight_column  analytical sigma_yy (whole-column relative L2 error)
+#   sliding_block       analytical sliding speed (max relative error, t >= 0.1 s)
+# Writes doc/speed_error.csv and doc/speed_error.png (error against wall
+# time, one panel per scene, one curve per parameter). Release build, one
+# core. A run stopped by the stability check is recorded as "unstable".
+# Usage: scripts/speed_error_sweep.sh [scene ...]   (default: all three)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=(vibrating_bar self_weight_column sliding_block)
 out="output-speed-error"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/speed_error.csv"
-echo "parameter,value,cell_size_m,points_per_cell,cfl,scheme,flip,points,steps,step_wall_s,vcm_error,period_error" > "$csv"
+echo "scene,parameter,value,points,steps,step_wall_s,particle_steps_per_s,peak_memory_MB,error,error_measure" > "$csv"
 
-# run PARAMETER VALUE CELLS_ALONG PPC CFL SCHEME FLIP
+# run SCENE PARAMETER VALUE PRM ERROR_LINE_PREFIX ERROR_MEASURE [--set ...]
 run() {
-  local parameter="$1" value="$2" n="$3" ppc="$4" cfl="$5" scheme="$6" flip="$7"
-  local h rows name
-  h=$(awk -v n="$n" 'BEGIN { print 26 / n }')
-  rows=$(awk -v h="$h" 'BEGIN { r = int(1 / h + 0.5); print (r < 1 ? 1 : r) }')
-  local top
-  top=$(awk -v h="$h" -v r="$rows" 'BEGIN { print h * r }')
-  name="$parameter-$value"
-  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/vibrating_bar.prm" \
-    --set "Mesh/Generator arguments={$n, $rows} : 0, 0 : 26, $top : true" \
-    --set "Material points/bar/Points per cell=$ppc" \
-    --set "Time stepping/CFL number=$cfl" \
-    --set "Time stepping/Update scheme=$scheme" \
-    --set "Time stepping/FLIP fraction=$flip" \
-    --set "Output/Write particles=false" --set "Output/Write mesh=false" \
-    --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1 || {
-    # Stopped by the stability check (or another error): recorded, not fatal.
-    printf "%s,%s,%s,%s,%s,%s,%s,,,,unstable,unstable\n" "$parameter" "$value" "$h" "$ppc" "$cfl" "$scheme" "$flip" | tee -a "$csv"
+  local scene="$1" parameter="$2" value="$3" prm="$4" prefix="$5" measure="$6"
+  shift 6
+  local name="$scene-$parameter-$value"
+  name="${name// /_}"
+  if ! /usr/bin/time -f "%M" -o "$out/$name.mem" "$MPM_BUILD_DIR/mpm" "$prm" "$@" \
+      --set "Output/Write particles=false" --set "Output/Write mesh=false" \
+      --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1; then
+    printf "%s,%s,%s,,,,,,unstable,%s\n" "$scene" "$parameter" "$value" "$measure" | tee -a "$csv"
     return 0
-  }
-  local report="$out/$name/report.txt" done_line
+  fi
+  local done_line error memory
   done_line=$(grep '^Done:' "$out/$name.log")
-  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$parameter" "$value" "$h" "$ppc" "$cfl" "$scheme" "$flip" \
+  error=$(grep -F "$prefix" "$out/$name/report.txt" | head -1 | sed -E 's/.*: //')
+  memory=$(awk '{ printf "%.1f", $1 / 1024 }' "$out/$name.mem")
+  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$scene" "$parameter" "$value" \
     "$(echo "$done_line" | awk '{print $4}')" "$(echo "$done_line" | awk '{print $2}')" \
     "$(echo "$done_line" | sed -E 's/.*\(steps ([0-9.e+-]+) s\).*/\1/')" \
-    "$(grep '^max |v_cm error|' "$report" | sed -E 's/.*: //')" \
-    "$(grep '^period relative error' "$report" | sed -E 's/.*: //')" | tee -a "$csv"
+    "$(echo "$done_line" | sed -E 's/.*, ([0-9.e+-]+) particle-steps.*/\1/')" \
+    "$memory" "$error" "$measure" | tee -a "$csv"
 }
 
-# The shipped case: 26 cells of 1 m, 2 x 2 points per cell, CFL 0.5, USF, FLIP.
-for n in 13 26 52 104 208; do run "cell size" "$n" "$n" 2 0.5 USF 1; done
-for ppc in 1 2 3 4; do run "points per cell" "$ppc" 26 "$ppc" 0.5 USF 1; done
-for cfl in 0.1 0.2 0.4 0.8; do run "CFL number" "$cfl" 26 2 "$cfl" USF 1; done
-for scheme in USF USL MUSL; do run "update scheme" "$scheme" 26 2 0.5 "$scheme" 1; done
-for flip in 0 0.5 0.9 1; do run "FLIP fraction" "$flip" 26 2 0.5 USF "$flip"; done
+vibrating_bar() {
+  # Shipped: 26 cells of 1 m, 2 x 2 points per cell, CFL 0.5, USF, FLIP.
+  local prm="$MPM_ROOT/prm/vibrating_bar.prm" e="max |v_cm error|" m="max v_cm error / amplitude"
+  local n h rows top
+  for n in 13 26 52 104 208; do
+    h=$(awk -v n="$n" 'BEGIN { print 26 / n }')
+    rows=$(awk -v h="$h" 'BEGIN { r = int(1 / h + 0.5); print (r < 1 ? 1 : r) }')
+    top=$(awk -v h="$h" -v r="$rows" 'BEGIN { print h * r }')
+    run vibrating_bar "cell size (m)" "$h" "$prm" "$e" "$m" \
+      --set "Mesh/Generator arguments={$n, $rows} : 0, 0 : 26, $top : true"
+  done
+  for v in 1 2 3 4; do run vibrating_bar "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/bar/Points per cell=$v"; done
+  for v in 0.1 0.2 0.4 0.8; do run vibrating_bar "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
+  for v in USF USL MUSL; do run vibrating_bar "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
+  for v in 0 0.5 0.9 1; do run vibrating_bar "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+}
+
+self_weight_column() {
+  # Shipped (tests/self_weight_column_h1.prm): h = 0.01 m, 2 x 2 points
+  # per cell, CFL 0.5, USF, FLIP, local damping 0.3.
+  local prm="$MPM_ROOT/tests/self_weight_column_h1.prm" e="whole column relative L2" m="L2 error of sigma_yy / rho g H"
+  local n
+  for n in 5 10 20 40; do
+    run self_weight_column "cell size (m)" "$(awk -v n="$n" 'BEGIN { print 0.1 / n }')" "$prm" "$e" "$m" \
+      --set "Mesh/Generator arguments={$n, $((n * 5 / 2))} : 0, 0 : 0.1, 0.25 : true"
+  done
+  for v in 1 2 3 4; do run self_weight_column "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/column/Points per cell=$v"; done
+  for v in 0.1 0.25 0.5 0.9; do run self_weight_column "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
+  for v in USF MUSL; do run self_weight_column "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
+  for v in 0 1; do run self_weight_column "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+}
+
+sliding_block() {
+  # Shipped (prm/sliding_block.prm, mu = 0.1): Gmsh mesh of 0.25 m quads,
+  # 4 x 4 points per cell, CFL 0.5, USF, PIC.
+  local prm="$MPM_ROOT/prm/sliding_block.prm" e="max relative speed error" m="max relative speed error (t >= 0.1 s)"
+  for v in 1 2 3 4 6; do run sliding_block "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/block/Points per cell=$v"; done
+  for v in 0.1 0.25 0.5 0.9; do run sliding_block "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
+  for v in USF USL MUSL; do run sliding_block "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
+  for v in 0 0.5 1; do run sliding_block "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+}
+
+for scene in "${scenes[@]}"; do
+  case "$scene" in
+    vibrating_bar | self_weight_column | sliding_block) "$scene" ;;
+    *) echo "unknown scene '$scene' (vibrating_bar, self_weight_column, sliding_block)" >&2; exit 2 ;;
+  esac
+done
 /usr/bin/python3 "$MPM_ROOT/scripts/plot_speed_error.py" "$csv" "$MPM_ROOT/doc/speed_error.png"
