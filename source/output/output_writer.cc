@@ -161,6 +161,10 @@ namespace MPM
 
     Particles::DataOut<dim> data_out;
     data_out.build_patches(particle_handler, property_names, interpretation);
+    // deal.II compresses with zlib's best_compression by default: 3 % of
+    // the flume's run time for files 10 % smaller than with best_speed.
+    data_out.set_flags(DataOutBase::VtkFlags(
+      time, output_index, true, DataOutBase::VtkFlags::best_speed));
     if (hdf5)
       {
         // Positions and data in one file per output time, which all ranks

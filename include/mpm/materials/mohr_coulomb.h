@@ -156,6 +156,8 @@ namespace MPM
         std::array<double, 3>                corner{};
       };
       std::vector<CandidateSet> candidate_sets;
+      /// 1 / (2 G), for the deviatoric plastic strain.
+      double inverse_two_shear_modulus = 0;
 
       void
       setup_surfaces();
