@@ -80,7 +80,21 @@ namespace MPM
         check_input(m.density > 0,
                     "Materials/" + name + "/Density = " +
                       prm.get("Density") + ": must be > 0 (kg/m^3).");
-        m.model = MaterialModelFactory::create(prm.get("Model"), prm);
+        const std::string model = prm.get("Model");
+        try
+          {
+            m.model = MaterialModelFactory::create(model, prm);
+          }
+        catch (const InputError &e)
+          {
+            // The models name their parameters relative to their own
+            // subsection ("mohr coulomb/Friction angle"); with several
+            // materials the user needs the whole path.
+            const std::string message = e.what();
+            throw InputError("Materials/" + name +
+                             (message.rfind(model + "/", 0) == 0 ? "/" : ": ") +
+                             message);
+          }
         materials.push_back(std::move(m));
         prm.leave_subsection();
       }
