@@ -431,6 +431,7 @@ namespace MPM
 
     active_cells.clear();
     shape_functions.resize(particle_handler.n_locally_owned_particles());
+    point_properties.resize(particle_handler.n_locally_owned_particles());
     active_dofs.clear();
 
     std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
@@ -469,8 +470,12 @@ namespace MPM
           }
         active_cells.push_back(active);
 
-        for (const auto &point : points)
-          shape_functions[k++].reinit(vertices, point.get_reference_location());
+        for (auto point = points.begin(); point != points.end(); ++point)
+          {
+            point_properties[k] = point->get_properties().data();
+            shape_functions[k++].reinit(vertices,
+                                        point->get_reference_location());
+          }
         it = points.end();
       }
     for (const unsigned int i : active_dofs)
@@ -526,12 +531,11 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "particle to grid");
     using Layout       = PropertyLayout<dim>;
-    auto         point = particle_handler.begin();
-    unsigned int k     = 0;
+    unsigned int k = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
-          const auto   props = point->get_properties();
+          const double *props = point_properties[k];
           const double m     = props[Layout::mass];
           const auto  &N     = shape_functions[k].value;
           for (unsigned int i = 0; i < N.size(); ++i)
@@ -561,12 +565,11 @@ namespace MPM
     for (const auto &range : nodal_momentum.get_partitioner()->import_indices())
       for (unsigned int i = range.first; i < range.second; ++i)
         nodal_momentum.local_element(i) = 0;
-    auto         point = particle_handler.begin();
-    unsigned int k     = 0;
+    unsigned int k = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
-          const auto   props = point->get_properties();
+          const double *props = point_properties[k];
           const double m     = props[Layout::mass];
           const auto  &N     = shape_functions[k].value;
           for (unsigned int i = 0; i < N.size(); ++i)
@@ -601,12 +604,11 @@ namespace MPM
     TimerOutput::Scope t(timer, "particle to grid");
     using Layout           = PropertyLayout<dim>;
     const Tensor<1, dim> g = time_stepping.gravity;
-    auto                 point = particle_handler.begin();
-    unsigned int         k     = 0;
+    unsigned int         k = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
-          const auto   props = point->get_properties();
+          const double *props = point_properties[k];
           const double m     = props[Layout::mass];
           const double V     = props[Layout::volume];
           // The dim x dim part of the stress: the only part that exerts
@@ -795,11 +797,11 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "stress update");
     using Layout    = PropertyLayout<dim>;
-    const double dt = time_step;
-    auto         point = particle_handler.begin();
-    unsigned int k     = 0;
+    const double       dt           = time_step;
+    const unsigned int n_properties = particle_handler.n_properties_per_particle();
+    unsigned int       k            = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
           const auto    &sf = shape_functions[k];
           Tensor<2, dim> grad_v;
@@ -815,7 +817,7 @@ namespace MPM
             for (unsigned int b = a; b < dim; ++b)
               strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
 
-          auto props = point->get_properties();
+          double *props = point_properties[k];
           const Material &material =
             materials[static_cast<unsigned int>(props[Layout::material_id])];
           SymmetricTensor<2, 3> stress =
@@ -823,8 +825,8 @@ namespace MPM
           material.model->update_stress(
             strain_increment,
             stress,
-            ArrayView<double>(props.data() + Layout::state,
-                              props.size() - Layout::state));
+            ArrayView<double>(props + Layout::state,
+                              n_properties - Layout::state));
           write_symmetric_tensor(stress, &props[Layout::stress]);
           write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
                                    strain_increment,

@@ -299,6 +299,15 @@ namespace MPM
 
     std::vector<ActiveCell>            active_cells;
     std::vector<Q1ShapeFunctions<dim>> shape_functions;
+    /**
+     * Each point's properties in the ParticleHandler's pool, in the order
+     * of shape_functions: the particle-to-grid and stress passes read them
+     * without walking the handler's iterators (which look up the cell's
+     * particle list for every point). Valid from prepare_transfer() until
+     * points are moved between cells or ranks in relocate_points(): no
+     * point is added or removed in between, so the pool does not move.
+     */
+    std::vector<double *> point_properties;
     /// Local element indices touched by the points of this step.
     std::vector<unsigned int>          active_dofs;
     std::vector<unsigned char>         dof_is_active;
