@@ -52,6 +52,7 @@ if(PRM)
   # Steps, in the order of their lines (default: one run):
   #  "# run: ARGS"      run mpm with these extra arguments; every run but
   #                     the last must succeed, the last is the one judged;
+  #                     %WORKDIR% in ARGS is the test's folder;
   #  "# truncate: FILE" cut the last 64 bytes off WORKDIR/FILE (a damaged
   #                     checkpoint).
   file(STRINGS ${PRM} _steps REGEX "^# (run|truncate):")
@@ -71,6 +72,8 @@ if(PRM)
       continue()
     endif()
     string(REGEX REPLACE "^# run:[ ]*" "" _extra "${_step}")
+    # %WORKDIR%: the test's folder (e.g. a file an earlier run wrote).
+    string(REPLACE "%WORKDIR%" "${WORKDIR}" _extra "${_extra}")
     separate_arguments(_extra UNIX_COMMAND "${_extra}")
     execute_process(
       COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}" ${_extra}

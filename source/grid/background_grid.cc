@@ -413,6 +413,18 @@ namespace MPM
 
 
   template <int dim>
+  SymmetricTensor<2, 3>
+  BackgroundGrid<dim>::to_scene_frame(const SymmetricTensor<2, 3> &t) const
+  {
+    Tensor<2, 3> R = unit_symmetric_tensor<3>();
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        R[a][b] = rotation[a][b];
+    return symmetrize(transpose(R) * Tensor<2, 3>(t) * R);
+  }
+
+
+  template <int dim>
   void
   BackgroundGrid<dim>::setup_partition_data()
   {

@@ -122,8 +122,10 @@ namespace MPM
                           Patterns::FileName(),
                           "Text file with one point per line: the dim "
                           "coordinates (m) and the volume (m^3, per unit "
-                          "thickness in 2D); '#' starts a comment. A relative "
-                          "name is read relative to the .prm file.");
+                          "thickness in 2D), with 'Initial stress = file' "
+                          "followed by the six stress components (Pa); '#' "
+                          "starts a comment. A relative name is read "
+                          "relative to the .prm file.");
         prm.declare_entry("Points per cell",
                           "2",
                           Patterns::Integer(1, 20),
@@ -137,12 +139,16 @@ namespace MPM
         prm.declare_entry(
           "Initial stress",
           "none",
-          Patterns::Selection("none|geostatic|function"),
+          Patterns::Selection("none|geostatic|function|file"),
           "'none': zero stress. 'geostatic': sigma_yy = rho g_y (y_s - y) "
           "with y_s the 'Surface elevation', sigma_xx = sigma_zz = K0 "
           "sigma_yy (y is the last coordinate). 'function': the six "
           "components xx; yy; zz; xy; yz; xz of the subsection 'Initial "
-          "stress function', in Pa.");
+          "stress function', in Pa. 'file' (Type = file): the same six "
+          "components follow the volume on each line of the 'Point file', "
+          "as in the file that 'Output/Write point file' writes at the end "
+          "of a run: a later stage starts in the stress state of an "
+          "earlier one (e.g. a gravity-settled slope, or a sliding state).");
         prm.declare_entry("K0",
                           "-1",
                           Patterns::Double(),
@@ -219,6 +225,10 @@ namespace MPM
         r.material_index =
           materials.index_of(prm.get("Material"), path + "Material");
         r.initial_stress = prm.get("Initial stress");
+        check_input(r.initial_stress != "file" || r.type == "file",
+                    "Material points/" + name + "/Initial stress = file "
+                    "needs Type = file: the stresses are read from the "
+                    "'Point file'.");
         r.k0             = prm.get_double("K0");
         const std::string surface = prm.get("Surface elevation");
         r.automatic_surface       = (surface == "auto");
@@ -310,11 +320,20 @@ namespace MPM
             for (unsigned int d = 0; d < dim; ++d)
               s >> p[d];
             s >> volume;
+            const bool with_stress = region.initial_stress == "file";
+            SymmetricTensor<2, 3> stress;
+            if (with_stress)
+              for (unsigned int k = 0; k < 6; ++k)
+                s >> stress[voigt_index[k][0]][voigt_index[k][1]];
             check_input(!s.fail() && volume > 0,
                         region.file_name + ", line " +
                           std::to_string(line_number) + ": expected " +
                           std::to_string(dim) +
-                          " coordinates and a positive volume.");
+                          " coordinates and a positive volume" +
+                          (with_stress ? ", then the six stress components "
+                                         "xx yy zz xy yz xz (Initial stress "
+                                         "= file)." :
+                                         "."));
             // Positions in the file are in the scene's frame.
             p                = grid.to_mesh_frame(p);
             const auto found = GridTools::find_active_cell_around_point(
@@ -327,7 +346,7 @@ namespace MPM
                 break;
               }
             if (found.first->is_locally_owned())
-              points.push_back({p, found.second, found.first, volume});
+              points.push_back({p, found.second, found.first, volume, stress});
           }
         check_input(!missing,
                     "Material point at " + missing_point +
@@ -393,7 +412,8 @@ namespace MPM
               points.push_back({x,
                                 sub_cell_centres.point(q),
                                 cell,
-                                fe_values.JxW(q)});
+                                fe_values.JxW(q),
+                                SymmetricTensor<2, 3>()});
           }
       }
     return points;
@@ -470,6 +490,8 @@ namespace MPM
               for (unsigned int k = 0; k < 6; ++k)
                 stress[voigt_index[k][0]][voigt_index[k][1]] =
                   region.initial_stress_function->value(X, k);
+            else if (region.initial_stress == "file")
+              stress = p.stress;
             write_symmetric_tensor(grid.to_mesh_frame(stress),
                                    &properties[Layout::stress]);
 

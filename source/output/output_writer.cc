@@ -6,7 +6,12 @@
 #include <deal.II/particles/data_out.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/material_points/property_layout.h>
 #include <mpm/output/output_writer.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
 
 #include <filesystem>
 
@@ -48,6 +53,15 @@ namespace MPM
                         "true",
                         Patterns::Bool(),
                         "Write the background mesh once (mesh.pvtu).");
+      prm.declare_entry("Write point file",
+                        "false",
+                        Patterns::Bool(),
+                        "At the end of the run, write points_end.txt: one "
+                        "line per point with its coordinates, volume and six "
+                        "stress components (xx yy zz xy yz xz), the format "
+                        "of 'Material points/.../Point file' with 'Initial "
+                        "stress = file', so that a later run can start from "
+                        "this run's stress state.");
       prm.declare_entry("Progress interval",
                         "10",
                         Patterns::Double(0),
@@ -68,6 +82,7 @@ namespace MPM
       output_interval      = prm.get_double("Output interval");
       write_particle_files = prm.get_bool("Write particles");
       write_mesh_file      = prm.get_bool("Write mesh");
+      write_point_file_at_end = prm.get_bool("Write point file");
       hdf5                 = prm.get("Particle format") == "hdf5";
       progress_seconds     = prm.get_double("Progress interval");
     }
@@ -138,6 +153,57 @@ namespace MPM
     data_out.build_patches(grid.mapping);
     data_out.write_vtu_with_pvtu_record(
       output_directory, "mesh", 0, grid.triangulation.get_communicator(), 0);
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::write_point_file(
+    const Particles::ParticleHandler<dim> &particle_handler,
+    const MaterialLibrary                 &materials,
+    const BackgroundGrid<dim>             &grid,
+    const MPI_Comm                         comm) const
+  {
+    if (!write_point_file_at_end)
+      return;
+    using Layout = PropertyLayout<dim>;
+    std::vector<std::pair<types::particle_index, std::string>> lines;
+    for (const auto &point : particle_handler)
+      {
+        const auto props = point.get_properties();
+        const auto &material =
+          materials[static_cast<unsigned int>(props[Layout::material_id])];
+        std::ostringstream line;
+        line << std::setprecision(17);
+        const Point<dim> x = grid.to_scene_frame(point.get_location());
+        for (unsigned int d = 0; d < dim; ++d)
+          line << x[d] << ' ';
+        // The volume of the point's mass at the material's density: the
+        // next run's mass is then exactly this run's.
+        line << props[Layout::mass] / material.density;
+        const SymmetricTensor<2, 3> stress =
+          grid.to_scene_frame(read_symmetric_tensor(&props[Layout::stress]));
+        for (unsigned int k = 0; k < 6; ++k)
+          line << ' ' << stress[voigt_index[k][0]][voigt_index[k][1]];
+        lines.emplace_back(point.get_id(), line.str());
+      }
+    const auto all = Utilities::MPI::gather(comm, lines, 0);
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+    std::vector<std::pair<types::particle_index, std::string>> sorted;
+    for (const auto &rank_lines : all)
+      sorted.insert(sorted.end(), rank_lines.begin(), rank_lines.end());
+    std::sort(sorted.begin(), sorted.end());
+    const std::string name = output_directory + "points_end.txt";
+    std::ofstream     out(name + ".new");
+    out << "# dealii-mpm point file: " << dim
+        << " coordinates (m), volume (m^3), stress xx yy zz xy yz xz (Pa); "
+           "read it with 'Type = file' and 'Initial stress = file'\n";
+    for (const auto &l : sorted)
+      out << l.second << '\n';
+    out.close();
+    AssertThrow(out, ExcMessage("Could not write " + name + ".new"));
+    std::filesystem::rename(name + ".new", name);
   }
 
 

@@ -120,6 +120,10 @@ namespace MPM
       return Point<dim>(transpose(rotation) * x);
     }
 
+    /// R^T sigma R: a stress back to the parameter file's frame.
+    SymmetricTensor<2, 3>
+    to_scene_frame(const SymmetricTensor<2, 3> &t) const;
+
     bool
     is_rotated() const
     {

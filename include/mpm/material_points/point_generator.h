@@ -100,6 +100,8 @@ namespace MPM
       Point<dim>                                         reference_location;
       typename Triangulation<dim>::active_cell_iterator cell;
       double                                             volume;
+      /// Initial stress read from the point file (scene frame).
+      SymmetricTensor<2, 3> stress;
     };
 
     std::vector<NewPoint>

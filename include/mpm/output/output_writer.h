@@ -7,6 +7,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/grid/background_grid.h>
+#include <mpm/materials/material_library.h>
 
 #include <fstream>
 #include <string>
@@ -64,6 +65,19 @@ namespace MPM
                     const unsigned int                     output_index,
                     const MPI_Comm                         comm);
 
+    /**
+     * If 'Output/Write point file' is set: every point as a line of
+     * points_end.txt (position and stress in the scene's frame, the volume
+     * its mass had at the material's density), which a later run reads
+     * with 'Type = file' and 'Initial stress = file'. One file, written by
+     * rank 0 in the order of the point ids.
+     */
+    void
+    write_point_file(const Particles::ParticleHandler<dim> &particle_handler,
+                     const MaterialLibrary                 &materials,
+                     const BackgroundGrid<dim>             &grid,
+                     const MPI_Comm                         comm) const;
+
     bool
     particles_enabled() const
     {
@@ -92,6 +106,7 @@ namespace MPM
     double                                    output_interval  = 0.1;
     bool                                      write_particle_files = true;
     bool                                      write_mesh_file      = true;
+    bool                                      write_point_file_at_end = false;
     double                                    progress_seconds     = 10;
     double                                    last_output_time     = -1e300;
     std::vector<std::pair<double, std::string>> pvd_records;
