@@ -7,10 +7,13 @@
 #   vibrating_bar       analytical centre-of-mass velocity (max error / amplitude)
 #   self_weight_column  analytical sigma_yy (whole-column relative L2 error)
 #   sliding_block       analytical sliding speed (max relative error, t >= 0.1 s)
+#   flume               final front position of the finest run (CFL 0.25,
+#                       3 x 3 points per cell); opt-in, about 10 min
 # Writes doc/speed_error.csv and doc/speed_error.png (error against wall
 # time, one panel per scene, one curve per parameter). Release build, one
 # core. A run stopped by the stability check is recorded as "unstable".
-# Usage: scripts/speed_error_sweep.sh [scene ...]   (default: all three)
+# Usage: scripts/speed_error_sweep.sh [scene ...]
+#   (default: vibrating_bar self_weight_column sliding_block; add flume)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
@@ -35,7 +38,11 @@ run() {
   fi
   local done_line error memory
   done_line=$(grep '^Done:' "$out/$name.log")
-  error=$(grep -F "$prefix" "$out/$name/report.txt" | head -1 | sed -E 's/.*: //')
+  if [ "$prefix" = "final front" ]; then
+    error=$(grep '^final front' "$out/$name/report.txt" | sed -E 's/final front: s = ([-0-9.e+]+) m.*/\1/')
+  else
+    error=$(grep -F "$prefix" "$out/$name/report.txt" | head -1 | sed -E 's/.*: //')
+  fi
   memory=$(awk '{ printf "%.1f", $1 / 1024 }' "$out/$name.mem")
   printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$scene" "$parameter" "$value" \
     "$(echo "$done_line" | awk '{print $4}')" "$(echo "$done_line" | awk '{print $2}')" \
@@ -86,10 +93,34 @@ sliding_block() {
   for v in 0 0.5 1; do run sliding_block "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
 }
 
+flume() {
+  # Shipped (prm/flume_usgs.prm): 5 mm mesh, 3 x 3 points per cell, CFL
+  # 0.5, MUSL, PIC. No analytical reference: the error is the distance of
+  # the final front from that of the finest run (CFL 0.25), which runs
+  # first and is not itself plotted.
+  local prm="$MPM_ROOT/prm/flume_usgs.prm" reference front_of
+  front_of() { grep '^final front' "$out/$1/report.txt" | sed -E 's/final front: s = ([-0-9.e+]+) m.*/\1/'; }
+  "$MPM_BUILD_DIR/mpm" "$prm" --set "Time stepping/CFL number=0.25" \
+    --set "Output/Write particles=false" --set "Output/Write mesh=false" \
+    --set "Output/Directory=$out/flume-reference" > "$out/flume-reference.log" 2>&1
+  reference=$(front_of flume-reference)
+  local v
+  for v in 0.5 0.8; do
+    run flume "CFL number" "$v" "$prm" "final front" "final front: |s - s(CFL 0.25)| (m)" --set "Time stepping/CFL number=$v"
+  done
+  for v in 2 4; do
+    run flume "points per cell" "$v" "$prm" "final front" "final front: |s - s(CFL 0.25)| (m)" --set "Material points/sand/Points per cell=$v"
+  done
+  # The error column holds the front's s; turn it into the distance from
+  # the reference.
+  awk -F, -v OFS=, -v r="$reference" '$1 == "flume" && $9 != "unstable" && $9 != "" {
+      d = $9 - r; $9 = (d < 0 ? -d : d) } { print }' "$csv" > "$csv.tmp" && mv "$csv.tmp" "$csv"
+}
+
 for scene in "${scenes[@]}"; do
   case "$scene" in
-    vibrating_bar | self_weight_column | sliding_block) "$scene" ;;
-    *) echo "unknown scene '$scene' (vibrating_bar, self_weight_column, sliding_block)" >&2; exit 2 ;;
+    vibrating_bar | self_weight_column | sliding_block | flume) "$scene" ;;
+    *) echo "unknown scene '$scene' (vibrating_bar, self_weight_column, sliding_block, flume)" >&2; exit 2 ;;
   esac
 done
 /usr/bin/python3 "$MPM_ROOT/scripts/plot_speed_error.py" "$csv" "$MPM_ROOT/doc/speed_error.png"
