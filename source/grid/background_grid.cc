@@ -400,14 +400,27 @@ namespace MPM
   }
 
 
+  namespace
+  {
+    /// The scene rotation as a 3x3 matrix (about z in 2D), for stresses.
+    template <int dim>
+    Tensor<2, 3>
+    rotation_3d(const Tensor<2, dim> &rotation)
+    {
+      Tensor<2, 3> R = unit_symmetric_tensor<3>();
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          R[a][b] = rotation[a][b];
+      return R;
+    }
+  } // namespace
+
+
   template <int dim>
   SymmetricTensor<2, 3>
   BackgroundGrid<dim>::to_mesh_frame(const SymmetricTensor<2, 3> &t) const
   {
-    Tensor<2, 3> R = unit_symmetric_tensor<3>();
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = 0; b < dim; ++b)
-        R[a][b] = rotation[a][b];
+    const Tensor<2, 3> R = rotation_3d<dim>(rotation);
     return symmetrize(R * Tensor<2, 3>(t) * transpose(R));
   }
 
@@ -416,10 +429,7 @@ namespace MPM
   SymmetricTensor<2, 3>
   BackgroundGrid<dim>::to_scene_frame(const SymmetricTensor<2, 3> &t) const
   {
-    Tensor<2, 3> R = unit_symmetric_tensor<3>();
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = 0; b < dim; ++b)
-        R[a][b] = rotation[a][b];
+    const Tensor<2, 3> R = rotation_3d<dim>(rotation);
     return symmetrize(transpose(R) * Tensor<2, 3>(t) * R);
   }
 
