@@ -651,40 +651,36 @@ namespace MPM
           }
         nodal_acceleration.local_element(i) = m > 0 ? f / m : 0.;
       }
-    // The step starts from the velocity the points brought, p/m, not from
-    // nodal_velocity, in which compute_nodal_velocity() has already
+    // The step starts from the velocity the points brought, u = p/m, not
+    // from nodal_velocity, in which compute_nodal_velocity() has already
     // removed the normal velocity into the walls (for the stress update).
     // That removal is part of the wall's normal impulse, and Coulomb
     // friction must act on all of it: starting from the constrained
     // velocity left friction out of the impulse with which the wall stops
     // the material arriving at it (in the sliding block, 5e-5 of the
-    // normal force, which the friction limit amplifies into a 3e-4 error
-    // of the acceleration at mu = 0.5).
-    NodalVector &velocity_brought = nodal_velocity_new;
+    // normal force, which the friction limit amplified into a 3e-4 error
+    // of the acceleration at mu = 0.5). nodal_velocity_new holds u until
+    // it is advanced.
+    const auto brought_velocity = [this](const unsigned int i) {
+      const double m = nodal_mass.local_element(i);
+      return m > 0 ? nodal_momentum.local_element(i) / m : 0.;
+    };
     for (const unsigned int i : active_dofs)
-      {
-        const double m = nodal_mass.local_element(i);
-        velocity_brought.local_element(i) =
-          m > 0 ? nodal_momentum.local_element(i) / m : 0.;
-      }
+      nodal_velocity_new.local_element(i) = brought_velocity(i);
     boundary_conditions.apply_friction(nodal_mass,
-                                       velocity_brought,
+                                       nodal_velocity_new,
                                        nodal_acceleration,
                                        dt);
     for (const unsigned int i : active_dofs)
-      velocity_brought.local_element(i) += dt * nodal_acceleration.local_element(i);
+      nodal_velocity_new.local_element(i) +=
+        dt * nodal_acceleration.local_element(i);
     boundary_conditions.project_velocity(nodal_velocity_new);
     // The acceleration consistent with the constrained velocity change
-    // from what the points brought, so that the FLIP update of the points
-    // respects the constraints too.
+    // from u, so that the FLIP update of the points respects the
+    // constraints too.
     for (const unsigned int i : active_dofs)
-      {
-        const double m = nodal_mass.local_element(i);
-        const double brought =
-          m > 0 ? nodal_momentum.local_element(i) / m : 0.;
-        nodal_acceleration.local_element(i) =
-          (nodal_velocity_new.local_element(i) - brought) / dt;
-      }
+      nodal_acceleration.local_element(i) =
+        (nodal_velocity_new.local_element(i) - brought_velocity(i)) / dt;
   }
 
 
