@@ -283,6 +283,14 @@ namespace MPM
             best_centre   = centre;
             result.xi     = xi;
           }
+        // A root inside the unit square is the answer: the map of a convex
+        // cell (which the mesh check guarantees) is one-to-one on the
+        // square, so the other root lies outside and could not win. The
+        // first root, C / q, is the one inside for all but strongly
+        // non-parallel cells: skipping the second saves a third of the
+        // cost of the most common case (a point that stayed in its cell).
+        if (best_distance == 0)
+          break;
       }
     if (!std::isfinite(best_distance))
       return result;
