@@ -527,58 +527,37 @@ namespace MPM
 
   template <int dim>
   void
-  Simulator<dim>::map_mass_and_momentum()
+  Simulator<dim>::map_mass_and_momentum(const bool with_forces)
   {
     TimerOutput::Scope t(timer, "particle to grid");
-    using Layout       = PropertyLayout<dim>;
-    unsigned int k = 0;
+    using Layout           = PropertyLayout<dim>;
+    const Tensor<1, dim> g = time_stepping.gravity;
+    unsigned int         k = 0;
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
           const double *props = point_properties[k];
-          const double m     = props[Layout::mass];
-          const auto  &N     = shape_functions[k].value;
-          for (unsigned int i = 0; i < N.size(); ++i)
+          const double  m     = props[Layout::mass];
+          const auto   &sf    = shape_functions[k];
+          for (unsigned int i = 0; i < sf.value.size(); ++i)
             for (unsigned int c = 0; c < dim; ++c)
               {
-                nodal_mass.local_element(cell.dofs[i][c]) += N[i] * m;
+                nodal_mass.local_element(cell.dofs[i][c]) += sf.value[i] * m;
                 nodal_momentum.local_element(cell.dofs[i][c]) +=
-                  N[i] * m * props[Layout::velocity + c];
+                  sf.value[i] * m * props[Layout::velocity + c];
               }
+          if (with_forces)
+            add_point_forces(props, sf, g, cell);
         }
     nodal_mass.compress(VectorOperation::add);
     nodal_momentum.compress(VectorOperation::add);
     nodal_mass.update_ghost_values();
     nodal_momentum.update_ghost_values();
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::map_momentum()
-  {
-    TimerOutput::Scope t(timer, "particle to grid");
-    using Layout = PropertyLayout<dim>;
-    nodal_momentum.zero_out_ghost_values();
-    for (const unsigned int i : active_dofs)
-      nodal_momentum.local_element(i) = 0;
-    for (const auto &range : nodal_momentum.get_partitioner()->import_indices())
-      for (unsigned int i = range.first; i < range.second; ++i)
-        nodal_momentum.local_element(i) = 0;
-    unsigned int k = 0;
-    for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        {
-          const double *props = point_properties[k];
-          const double m     = props[Layout::mass];
-          const auto  &N     = shape_functions[k].value;
-          for (unsigned int i = 0; i < N.size(); ++i)
-            for (unsigned int c = 0; c < dim; ++c)
-              nodal_momentum.local_element(cell.dofs[i][c]) +=
-                N[i] * m * props[Layout::velocity + c];
-        }
-    nodal_momentum.compress(VectorOperation::add);
-    nodal_momentum.update_ghost_values();
+    if (with_forces)
+      {
+        nodal_force.compress(VectorOperation::add);
+        nodal_force.update_ghost_values();
+      }
   }
 
 
@@ -598,34 +577,43 @@ namespace MPM
 
 
   template <int dim>
+  inline void
+  Simulator<dim>::add_point_forces(const double                *props,
+                                   const Q1ShapeFunctions<dim> &sf,
+                                   const Tensor<1, dim>        &g,
+                                   const ActiveCell            &cell)
+  {
+    using Layout   = PropertyLayout<dim>;
+    const double m = props[Layout::mass];
+    const double V = props[Layout::volume];
+    // The dim x dim part of the stress: the only part that exerts in-plane
+    // forces.
+    const SymmetricTensor<2, 3> stress =
+      read_symmetric_tensor(&props[Layout::stress]);
+    Tensor<2, dim> sigma;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        sigma[a][b] = stress[a][b];
+    for (unsigned int i = 0; i < sf.value.size(); ++i)
+      {
+        const Tensor<1, dim> f =
+          -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
+        for (unsigned int c = 0; c < dim; ++c)
+          nodal_force.local_element(cell.dofs[i][c]) += f[c];
+      }
+  }
+
+
+  template <int dim>
   void
   Simulator<dim>::map_forces()
   {
     TimerOutput::Scope t(timer, "particle to grid");
-    using Layout           = PropertyLayout<dim>;
     const Tensor<1, dim> g = time_stepping.gravity;
     unsigned int         k = 0;
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        {
-          const double *props = point_properties[k];
-          const double m     = props[Layout::mass];
-          const double V     = props[Layout::volume];
-          // The dim x dim part of the stress: the only part that exerts
-          // in-plane forces.
-          Tensor<2, dim> sigma;
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int b = 0; b < dim; ++b)
-              sigma[a][b] = read_symmetric_tensor(&props[Layout::stress])[a][b];
-          const auto &sf = shape_functions[k];
-          for (unsigned int i = 0; i < sf.value.size(); ++i)
-            {
-              const Tensor<1, dim> f = -V * (sigma * sf.gradient[i]) +
-                                       (sf.value[i] * m) * g;
-              for (unsigned int c = 0; c < dim; ++c)
-                nodal_force.local_element(cell.dofs[i][c]) += f[c];
-            }
-        }
+        add_point_forces(point_properties[k], shape_functions[k], g, cell);
     nodal_force.compress(VectorOperation::add);
     nodal_force.update_ghost_values();
   }
@@ -686,7 +674,7 @@ namespace MPM
 
   template <int dim>
   void
-  Simulator<dim>::update_points_from_grid()
+  Simulator<dim>::update_points_from_grid(const bool remap_momentum)
   {
     TimerOutput::Scope t(timer, "grid to particle");
     using Layout        = PropertyLayout<dim>;
@@ -695,6 +683,18 @@ namespace MPM
     double       v_max2 = 0;
     auto         point  = particle_handler.begin();
     unsigned int k      = 0;
+    if (remap_momentum)
+      {
+        // As zero_nodal_fields(): the entries of this rank's points and
+        // those other ranks added to.
+        nodal_momentum.zero_out_ghost_values();
+        for (const unsigned int i : active_dofs)
+          nodal_momentum.local_element(i) = 0;
+        for (const auto &range :
+             nodal_momentum.get_partitioner()->import_indices())
+          for (unsigned int i = range.first; i < range.second; ++i)
+            nodal_momentum.local_element(i) = 0;
+      }
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
         {
@@ -716,6 +716,14 @@ namespace MPM
               x[c] += dt * v_new[c];
             }
           point->set_location(x);
+          if (remap_momentum)
+            {
+              const double m = props[Layout::mass];
+              for (unsigned int i = 0; i < N.size(); ++i)
+                for (unsigned int c = 0; c < dim; ++c)
+                  nodal_momentum.local_element(cell.dofs[i][c]) +=
+                    N[i] * m * props[Layout::velocity + c];
+            }
           const double speed2 =
             read_vector<dim>(&props[Layout::velocity]).norm_square();
           v_max2 = std::max(v_max2, speed2);
@@ -734,6 +742,11 @@ namespace MPM
               first_bad_point = s.str();
             }
         }
+    if (remap_momentum)
+      {
+        nodal_momentum.compress(VectorOperation::add);
+        nodal_momentum.update_ghost_values();
+      }
     // A bad point makes the largest speed infinite on every rank: the
     // reduction that exists anyway tells all ranks to stop.
     max_point_speed = Utilities::MPI::max(
@@ -888,18 +901,20 @@ namespace MPM
     zero_nodal_fields();
     prepare_transfer();
     time_step = compute_time_step();
-    map_mass_and_momentum();
+    const UpdateScheme scheme = time_stepping.scheme;
+    map_mass_and_momentum(scheme != UpdateScheme::usf);
     compute_nodal_velocity(nodal_velocity);
-    if (time_stepping.scheme == UpdateScheme::usf)
-      update_stress(nodal_velocity);
-    map_forces();
-    update_nodal_kinematics();
-    update_points_from_grid();
-    if (time_stepping.scheme == UpdateScheme::usl)
-      update_stress(nodal_velocity_new);
-    else if (time_stepping.scheme == UpdateScheme::musl)
+    if (scheme == UpdateScheme::usf)
       {
-        map_momentum();
+        update_stress(nodal_velocity);
+        map_forces();
+      }
+    update_nodal_kinematics();
+    update_points_from_grid(scheme == UpdateScheme::musl);
+    if (scheme == UpdateScheme::usl)
+      update_stress(nodal_velocity_new);
+    else if (scheme == UpdateScheme::musl)
+      {
         compute_nodal_velocity(nodal_velocity_new);
         update_stress(nodal_velocity_new);
       }

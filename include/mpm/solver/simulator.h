@@ -233,11 +233,26 @@ namespace MPM
     void
     mark_locally_computed_fields();
 
+    /**
+     * Particle to grid: nodal mass and momentum and, if @p with_forces,
+     * the nodal forces (gravity and the divergence of the stress) in the
+     * same pass over the points. USL and MUSL update the stress after the
+     * forces are mapped, so for them one pass reads each point's data and
+     * shape functions once instead of twice; USF maps the forces after its
+     * stress update, with map_forces().
+     */
     void
-    map_mass_and_momentum();
+    map_mass_and_momentum(const bool with_forces);
 
+    /**
+     * Add one point's forces to nodal_force: gravity and the divergence of
+     * its stress, with its shape functions @p sf in @p cell.
+     */
     void
-    map_momentum();
+    add_point_forces(const double                *props,
+                     const Q1ShapeFunctions<dim> &sf,
+                     const Tensor<1, dim>        &gravity,
+                     const ActiveCell            &cell);
 
     void
     compute_nodal_velocity(NodalVector &velocity_out);
@@ -248,8 +263,15 @@ namespace MPM
     void
     update_nodal_kinematics();
 
+    /**
+     * Grid to particle: new point velocities and positions. With
+     * @p remap_momentum (MUSL) the same pass maps the points' new momentum
+     * back to the nodes (into nodal_momentum), which MUSL's stress update
+     * takes its velocity from: a separate pass would read every point and
+     * its shape functions again.
+     */
     void
-    update_points_from_grid();
+    update_points_from_grid(const bool remap_momentum);
 
     void
     update_stress(const NodalVector &nodal_velocity);
