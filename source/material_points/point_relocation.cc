@@ -261,10 +261,62 @@ namespace MPM
             cell,
             ArrayView<const double>(b + 2 * dim + 5, n_properties));
         }
+    stats.n_points_moved += moves.size();
+    n_moved_since_reorder += leavers.size();
+    if (n_moved_since_reorder >
+        reorder_fraction * particle_handler.n_locally_owned_particles())
+      reorder_storage(particle_handler);
     // insert_particle() does not update the number of points that
     // remove_particles() decreased.
     particle_handler.update_cached_numbers();
-    stats.n_points_moved += moves.size();
+  }
+
+
+  template <int dim>
+  void
+  PointRelocation<dim>::reorder_storage(
+    Particles::ParticleHandler<dim> &particle_handler)
+  {
+    struct Record
+    {
+      Point<dim>            location;
+      Point<dim>            reference_location;
+      types::particle_index id;
+      CellIterator          cell;
+    };
+    const unsigned int n_properties =
+      particle_handler.n_properties_per_particle();
+    std::vector<Record> records;
+    std::vector<double> properties;
+    records.reserve(particle_handler.n_locally_owned_particles());
+    properties.reserve(particle_handler.n_locally_owned_particles() *
+                       n_properties);
+    for (const auto &point : particle_handler)
+      {
+        records.push_back({point.get_location(),
+                           point.get_reference_location(),
+                           point.get_id(),
+                           point.get_surrounding_cell()});
+        const auto p = point.get_properties();
+        properties.insert(properties.end(), p.begin(), p.end());
+      }
+    // With every slot free, the property pool starts again from an empty
+    // array, and the points inserted in the order of iteration get
+    // consecutive slots. The order of iteration itself does not change
+    // (cell by cell, in each cell in the order of insertion): the results
+    // are the same to the last bit.
+    particle_handler.clear_particles();
+    particle_handler.reserve(records.size());
+    for (std::size_t r = 0; r < records.size(); ++r)
+      particle_handler.insert_particle(
+        records[r].location,
+        records[r].reference_location,
+        records[r].id,
+        records[r].cell,
+        ArrayView<const double>(properties.data() + r * n_properties,
+                                n_properties));
+    n_moved_since_reorder = 0;
+    ++stats.n_reorders;
   }
 
 
