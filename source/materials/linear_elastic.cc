@@ -24,7 +24,7 @@ namespace MPM
                                  SymmetricTensor<2, 3>       &stress,
                                  const ArrayView<double> &) const
     {
-      stress += elasticity.stress(strain_increment);
+      elasticity.add_stress_increment(strain_increment, stress);
     }
 
 

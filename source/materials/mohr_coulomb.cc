@@ -236,8 +236,8 @@ namespace MPM
     }
 
 
-    unsigned int
-    MohrCoulomb::return_principal(std::array<double, 3> &s) const
+    inline DEAL_II_ALWAYS_INLINE unsigned int
+    MohrCoulomb::return_principal_inline(std::array<double, 3> &s) const
     {
       const std::array<double, 3> trial = s;
 
@@ -321,6 +321,34 @@ namespace MPM
     }
 
 
+    unsigned int
+    MohrCoulomb::return_principal(std::array<double, 3> &s) const
+    {
+      return return_principal_inline(s);
+    }
+
+
+    inline DEAL_II_ALWAYS_INLINE void
+    MohrCoulomb::accumulate_plastic_strain(const std::array<double, 3> &s_trial,
+                                           const std::array<double, 3> &s,
+                                           const ArrayView<double> &state) const
+    {
+      // Plastic strain increment C (s_trial - s) in the principal frame,
+      // and its deviatoric norm.
+      std::array<double, 3> ds;
+      for (unsigned int i = 0; i < 3; ++i)
+        ds[i] = s_trial[i] - s[i];
+      // Only the deviatoric part counts, and the deviator of
+      // ((1 + nu) ds - nu tr(ds) I) / E is (1 + nu) / E dev(ds) = dev(ds) /
+      // (2 G): no division per point.
+      const double mean = (ds[0] + ds[1] + ds[2]) * (1. / 3.);
+      double       e2   = 0;
+      for (unsigned int i = 0; i < 3; ++i)
+        e2 += (ds[i] - mean) * (ds[i] - mean);
+      state[0] += std::sqrt(2. / 3. * e2) * inverse_two_shear_modulus;
+    }
+
+
     void
     MohrCoulomb::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                SymmetricTensor<2, 3>       &stress,
@@ -329,8 +357,8 @@ namespace MPM
       AssertIndexRange(0, state.size());
       // The same elastic predictor as LinearElastic, so that an elastic
       // step gives the same stress to the last bit.
-      const SymmetricTensor<2, 3> trial =
-        stress + elasticity.stress(strain_increment);
+      SymmetricTensor<2, 3> trial = stress;
+      elasticity.add_stress_increment(strain_increment, trial);
 
       std::array<double, 3> s;
       if (trial[0][2] == 0 && trial[1][2] == 0)
@@ -342,42 +370,51 @@ namespace MPM
           // coincide (r -> 0), and it costs a square root instead of an
           // iterative decomposition: the stress update was two thirds of
           // the flume's run time.
-          const double c = 0.5 * (trial[0][0] + trial[1][1]);
-          const double h = 0.5 * (trial[0][0] - trial[1][1]);
-          const double r = std::sqrt(h * h + trial[0][1] * trial[0][1]);
-          // return_principal() takes them in descending order.
-          const std::array<double, 3> unsorted = {{c + r, c - r, trial[2][2]}};
-          std::array<unsigned int, 3> order    = {{0, 1, 2}};
-          if (unsorted[2] > unsorted[0])
-            order = {{2, 0, 1}};
-          else if (unsorted[2] > unsorted[1])
-            order = {{0, 2, 1}};
-          for (unsigned int i = 0; i < 3; ++i)
-            s[i] = unsorted[order[i]];
+          //
+          // The values are kept in named scalars and the three orderings
+          // written out: sorting through an index array made the compiler
+          // store the values one by one and load them back as a pair, a
+          // store-forwarding stall that was a sixth of this function's time.
+          const double sxy   = trial[0][1];
+          const double szz   = trial[2][2];
+          const double c     = 0.5 * (trial[0][0] + trial[1][1]);
+          const double h     = 0.5 * (trial[0][0] - trial[1][1]);
+          const double r     = std::sqrt(h * h + sxy * sxy);
+          const double major = c + r;
+          const double minor = c - r;
+          // Where s_zz falls in the descending order: 0 first, 1 between
+          // the in-plane pair, 2 last.
+          const unsigned int z_position =
+            szz > major ? 0 : (szz > minor ? 1 : 2);
+          if (z_position == 0)
+            s = {{szz, major, minor}};
+          else if (z_position == 1)
+            s = {{major, szz, minor}};
+          else
+            s = {{major, minor, szz}};
           const std::array<double, 3> s_trial = s;
-          if (return_principal(s) == 0)
+          if (return_principal_inline(s) == 0)
             {
               stress = trial;
               return;
             }
           accumulate_plastic_strain(s_trial, s, state);
-          std::array<double, 3> returned;
-          for (unsigned int i = 0; i < 3; ++i)
-            returned[order[i]] = s[i];
-          s = returned;
+          const double new_zz    = s[z_position];
+          const double new_major = s[z_position == 0 ? 1 : 0];
+          const double new_minor = s[z_position == 2 ? 1 : 2];
           // The returned stress is coaxial with the trial stress: with
           // the direction (cos a, sin a) of the larger in-plane value,
           // cos 2a = h / r and sin 2a = sigma_xy / r, so no angle is
           // needed. (r = 0: every in-plane direction is principal.)
           const double cos_2a = r > 0 ? h / r : 1.;
-          const double sin_2a = r > 0 ? trial[0][1] / r : 0.;
-          const double centre = 0.5 * (s[0] + s[1]);
-          const double radius = 0.5 * (s[0] - s[1]);
+          const double sin_2a = r > 0 ? sxy / r : 0.;
+          const double centre = 0.5 * (new_major + new_minor);
+          const double radius = 0.5 * (new_major - new_minor);
           stress              = 0;
           stress[0][0]        = centre + radius * cos_2a;
           stress[1][1]        = centre - radius * cos_2a;
           stress[0][1]        = radius * sin_2a;
-          stress[2][2]        = s[2];
+          stress[2][2]        = new_zz;
           return;
         }
 
@@ -403,7 +440,7 @@ namespace MPM
       s = {{eigen[0].first, eigen[1].first, eigen[2].first}};
       const std::array<double, 3> s_trial = s;
 
-      if (return_principal(s) == 0)
+      if (return_principal_inline(s) == 0)
       {
         stress = trial;
         return;
@@ -414,27 +451,6 @@ namespace MPM
         stress +=
           s[i] * symmetrize(outer_product(eigen[i].second, eigen[i].second));
       accumulate_plastic_strain(s_trial, s, state);
-    }
-
-
-    void
-    MohrCoulomb::accumulate_plastic_strain(const std::array<double, 3> &s_trial,
-                                           const std::array<double, 3> &s,
-                                           const ArrayView<double> &state) const
-    {
-      // Plastic strain increment C (s_trial - s) in the principal frame,
-      // and its deviatoric norm.
-      std::array<double, 3> ds;
-      for (unsigned int i = 0; i < 3; ++i)
-        ds[i] = s_trial[i] - s[i];
-      // Only the deviatoric part counts, and the deviator of
-      // ((1 + nu) ds - nu tr(ds) I) / E is (1 + nu) / E dev(ds) = dev(ds) /
-      // (2 G): no division per point.
-      const double mean = (ds[0] + ds[1] + ds[2]) * (1. / 3.);
-      double       e2   = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        e2 += (ds[i] - mean) * (ds[i] - mean);
-      state[0] += std::sqrt(2. / 3. * e2) * inverse_two_shear_modulus;
     }
 
 

@@ -41,6 +41,27 @@ namespace MPM
              2 * shear_modulus * strain;
     }
 
+    /**
+     * stress += C : strain, component by component. The same numbers as
+     * adding stress(strain), without the temporaries; shared by every
+     * model's elastic predictor so that an elastic step of an elasto-plastic
+     * model gives the linear elastic stress to the last bit.
+     */
+    void
+    add_stress_increment(const SymmetricTensor<2, 3> &strain,
+                         SymmetricTensor<2, 3>       &stress) const
+    {
+      const double lambda_trace =
+        lambda * (strain[0][0] + strain[1][1] + strain[2][2]);
+      const double two_mu = 2 * shear_modulus;
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          stress[a][a] += lambda_trace + two_mu * strain[a][a];
+          for (unsigned int b = a + 1; b < 3; ++b)
+            stress[a][b] += two_mu * strain[a][b];
+        }
+    }
+
     /// C^{-1} : sigma = (1 + nu)/E sigma - nu/E tr(sigma) I.
     SymmetricTensor<2, 3>
     strain(const SymmetricTensor<2, 3> &stress) const

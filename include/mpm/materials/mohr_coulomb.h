@@ -111,16 +111,25 @@ namespace MPM
       unsigned int
       return_principal(std::array<double, 3> &s) const;
 
+    private:
+      /**
+       * The body of return_principal(), inlined into update_stress() so
+       * that the principal values stay in registers: passed through
+       * memory, they were written one by one and read back in pairs, and
+       * the store-forwarding stalls cost more than the arithmetic.
+       */
+      inline unsigned int
+      return_principal_inline(std::array<double, 3> &s) const;
+
       /**
        * Add the deviatoric norm of the plastic strain increment
        * C^-1 (s_trial - s) (principal values) to the state.
        */
-      void
+      inline void
       accumulate_plastic_strain(const std::array<double, 3> &s_trial,
                                 const std::array<double, 3> &s,
                                 const ArrayView<double>     &state) const;
 
-    private:
       IsotropicElasticity elasticity;
       double friction_angle = 0; // radians
       double dilation_angle = 0; // radians
