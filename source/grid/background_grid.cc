@@ -440,9 +440,12 @@ namespace MPM
   {
     double h = std::numeric_limits<double>::max();
     cell_sizes.assign(triangulation.n_active_cells(), 0.);
+    vertices_of_cells.assign(triangulation.n_active_cells(), {});
     for (const auto &cell : triangulation.active_cell_iterators())
       if (!cell->is_artificial())
         {
+          for (const unsigned int v : cell->vertex_indices())
+            vertices_of_cells[cell->active_cell_index()][v] = cell->vertex(v);
           cell_sizes[cell->active_cell_index()] =
             cell->minimum_vertex_distance();
           if (cell->is_locally_owned())

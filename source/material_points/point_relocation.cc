@@ -97,14 +97,12 @@ namespace MPM
     bool                need_full_sort = false;
 
     // 1. Every point in its old cell, cell by cell.
-    std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
     const bool by_vertices = inverse_type != InverseMappingType::dealii;
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
-        const CellIterator cell   = it->get_surrounding_cell();
-        const auto         points = particle_handler.particles_in_cell(cell);
-        for (const unsigned int v : cell->vertex_indices())
-          vertices[v] = cell->vertex(v);
+        const CellIterator cell     = it->get_surrounding_cell();
+        const auto         points   = particle_handler.particles_in_cell(cell);
+        const auto        &vertices = grid->cell_vertices(cell);
         for (auto point = points.begin(); point != points.end(); ++point)
           {
             const Point<dim> x = point->get_location();

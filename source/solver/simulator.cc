@@ -257,6 +257,26 @@ namespace MPM
                            &nodal_acceleration})
       v->reinit(partitioner);
     mark_locally_computed_fields();
+    // The nodal-vector entries of every locally owned cell's vertices,
+    // looked up once: the DoF handler and the partitioner's global-to-local
+    // map are not touched by the steps.
+    using DoFCellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
+    local_dofs_of_cells.assign(grid.triangulation.n_active_cells(), {});
+    for (const auto &tria_cell : grid.triangulation.active_cell_iterators())
+      if (tria_cell->is_locally_owned())
+        {
+          const DoFCellIterator cell(&grid.triangulation,
+                                     tria_cell->level(),
+                                     tria_cell->index(),
+                                     &grid.dof_handler);
+          cell->get_dof_indices(cell_dofs);
+          auto &local = local_dofs_of_cells[tria_cell->active_cell_index()];
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < dim; ++c)
+              local[v][c] = partitioner->global_to_local(
+                cell_dofs[grid.fe.component_to_system_index(c, v)]);
+        }
     dof_is_active.assign(nodal_mass.locally_owned_size() +
                            partitioner->n_ghost_indices(),
                          0);
@@ -426,50 +446,32 @@ namespace MPM
   Simulator<dim>::prepare_transfer()
   {
     TimerOutput::Scope t(timer, "shape functions");
-    using CellIterator = typename DoFHandler<dim>::active_cell_iterator;
-    const auto &partitioner = *nodal_mass.get_partitioner();
-
     active_cells.clear();
     shape_functions.resize(particle_handler.n_locally_owned_particles());
     point_properties.resize(particle_handler.n_locally_owned_particles());
     active_dofs.clear();
 
-    std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> vertices;
-    std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
-    unsigned int                         k = 0;
-    double h_min = std::numeric_limits<double>::max();
+    unsigned int k     = 0;
+    double       h_min = std::numeric_limits<double>::max();
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
-        const typename Triangulation<dim>::active_cell_iterator tria_cell =
+        const typename Triangulation<dim>::active_cell_iterator cell =
           it->get_surrounding_cell();
-        const auto   points    = particle_handler.particles_in_cell(tria_cell);
-        const CellIterator cell(&grid.triangulation,
-                                tria_cell->level(),
-                                tria_cell->index(),
-                                &grid.dof_handler);
-        cell->get_dof_indices(cell_dofs);
-
-        h_min = std::min(h_min, grid.cell_size(tria_cell));
+        const auto points = particle_handler.particles_in_cell(cell);
+        h_min             = std::min(h_min, grid.cell_size(cell));
         ActiveCell active{static_cast<unsigned int>(
-                            particle_handler.n_particles_in_cell(tria_cell)),
-                          {}};
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            vertices[v] = cell->vertex(v);
-            for (unsigned int c = 0; c < dim; ++c)
+                            particle_handler.n_particles_in_cell(cell)),
+                          local_dofs_of_cells[cell->active_cell_index()]};
+        for (const auto &vertex_dofs : active.dofs)
+          for (const unsigned int local : vertex_dofs)
+            if (!dof_is_active[local])
               {
-                const unsigned int local = partitioner.global_to_local(
-                  cell_dofs[grid.fe.component_to_system_index(c, v)]);
-                active.dofs[v][c] = local;
-                if (!dof_is_active[local])
-                  {
-                    dof_is_active[local] = 1;
-                    active_dofs.push_back(local);
-                  }
+                dof_is_active[local] = 1;
+                active_dofs.push_back(local);
               }
-          }
         active_cells.push_back(active);
 
+        const auto &vertices = grid.cell_vertices(cell);
         for (auto point = points.begin(); point != points.end(); ++point)
           {
             point_properties[k] = point->get_properties().data();

@@ -12,6 +12,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
 
+#include <array>
 #include <string>
 
 namespace MPM
@@ -82,6 +83,22 @@ namespace MPM
     cell_size(const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
       return cell_sizes[cell->active_cell_index()];
+    }
+
+    /**
+     * The vertices of each locally relevant active cell in deal.II's order,
+     * indexed by active_cell_index(). Every step inverse-maps and evaluates
+     * shape functions cell by cell; reading the vertices through the
+     * triangulation (cell->vertex(), which goes through the cell's lines)
+     * cost more than the inverse map itself once the material had spread
+     * to a few points per cell. The mesh does not move, so they are copied
+     * once.
+     */
+    const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> &
+    cell_vertices(
+      const typename Triangulation<dim>::active_cell_iterator &cell) const
+    {
+      return vertices_of_cells[cell->active_cell_index()];
     }
 
     /**
@@ -171,6 +188,8 @@ namespace MPM
     Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
     double       min_cell_size        = 0;
     std::vector<double> cell_sizes;
+    std::vector<std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>>
+      vertices_of_cells;
   };
 } // namespace MPM
 

@@ -319,6 +319,14 @@ namespace MPM
     NodalVector nodal_velocity_new;
     NodalVector nodal_acceleration;
 
+    /**
+     * The local indices into the nodal vectors of each locally owned
+     * cell's vertex DoFs (dim per vertex), by active_cell_index(); set up
+     * with the nodal vectors.
+     */
+    std::vector<std::array<std::array<unsigned int, dim>,
+                           GeometryInfo<dim>::vertices_per_cell>>
+                                       local_dofs_of_cells;
     std::vector<ActiveCell>            active_cells;
     std::vector<Q1ShapeFunctions<dim>> shape_functions;
     /**
