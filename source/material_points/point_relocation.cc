@@ -6,6 +6,7 @@
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <array>
 
@@ -263,7 +264,13 @@ namespace MPM
     n_moved_since_reorder += leavers.size();
     if (n_moved_since_reorder >
         reorder_fraction * particle_handler.n_locally_owned_particles())
-      reorder_storage(particle_handler);
+      {
+        const auto start = std::chrono::steady_clock::now();
+        reorder_storage(particle_handler);
+        stats.reorder_seconds += std::chrono::duration<double>(
+                                   std::chrono::steady_clock::now() - start)
+                                   .count();
+      }
     // insert_particle() does not update the number of points that
     // remove_particles() decreased.
     particle_handler.update_cached_numbers();

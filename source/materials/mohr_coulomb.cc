@@ -276,9 +276,12 @@ namespace MPM
         for (unsigned int i = 0; i < m; ++i)
           for (unsigned int j = 0; j < m; ++j)
             dgamma[i] += set.inverse[i][j] * f_trial[set.active[j]];
-        if (std::any_of(dgamma.begin(),
-                        dgamma.begin() + m,
-                        [&](double g) { return g < -multiplier_tol; }))
+        // (A plain loop: std::any_of was not inlined, a call per set.)
+        bool negative_multiplier = false;
+        for (unsigned int i = 0; i < m; ++i)
+          negative_multiplier =
+            negative_multiplier || dgamma[i] < -multiplier_tol;
+        if (negative_multiplier)
           continue;
 
         std::array<double, 3> x = trial;

@@ -1126,7 +1126,10 @@ namespace MPM
             << " % of the point-steps changed cell, "
             << located.n_points_sent << " point(s) sent to another rank; "
             << located.n_full_sorts
-            << " step(s) needed deal.II's full sort.\n";
+            << " step(s) needed deal.II's full sort; storage put back in "
+               "cell order "
+            << located.n_reorders << " time(s) (" << located.reorder_seconds
+            << " s).\n";
     timer.print_summary();
   }
 

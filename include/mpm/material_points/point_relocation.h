@@ -88,6 +88,8 @@ namespace MPM
       unsigned long long n_full_sorts    = 0;
       /// Times the point storage was put back into the order of iteration.
       unsigned long long n_reorders      = 0;
+      /// Wall time spent in the reorderings.
+      double             reorder_seconds = 0;
     };
 
     const Statistics &
@@ -122,7 +124,7 @@ namespace MPM
      * Reorder the storage after this fraction of the points moved to
      * another cell (counting a point every time it moves).
      */
-    static constexpr double reorder_fraction = 0.05;
+    static constexpr double reorder_fraction = 0.2;
 
     unsigned long long n_moved_since_reorder = 0;
 
