@@ -271,8 +271,13 @@ namespace MPM
                                    std::chrono::steady_clock::now() - start)
                                    .count();
       }
-    // insert_particle() does not update the number of points that
-    // remove_particles() decreased.
+    // In deal.II 9.4 remove_particles() recounts the points (local and
+    // global) and insert_particle() adds to the local count only: without
+    // this recount the global number of points would lack the points
+    // re-inserted in this step (tried: the flume's mean speed, a sum over
+    // n_global_particles(), changed in the fourth digit). Inserting before
+    // removing would save it, but changes the order of the points within
+    // a cell and so the round-off of every sum.
     particle_handler.update_cached_numbers();
   }
 
