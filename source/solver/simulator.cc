@@ -490,27 +490,32 @@ namespace MPM
   void
   Simulator<dim>::zero_nodal_fields()
   {
-    // Only the entries the previous step touched are non-zero: those of
-    // this rank's points (active_dofs, owned or ghost) and the owned
-    // entries other ranks added to in compress() (the partitioner's import
-    // indices). Clearing only them keeps the cost independent of the size
-    // of the empty mesh, on one rank or many.
-    const auto &imports = nodal_mass.get_partitioner()->import_indices();
     for (NodalVector *v : {&nodal_mass,
                            &nodal_momentum,
                            &nodal_force,
                            &nodal_velocity,
                            &nodal_velocity_new,
                            &nodal_acceleration})
-      {
-        for (const unsigned int i : active_dofs)
-          v->local_element(i) = 0;
-        for (const auto &range : imports)
-          for (unsigned int i = range.first; i < range.second; ++i)
-            v->local_element(i) = 0;
-        v->zero_out_ghost_values();
-      }
+      zero_touched_entries(*v);
     mark_locally_computed_fields();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::zero_touched_entries(NodalVector &v) const
+  {
+    // Only the entries the previous step touched are non-zero: those of
+    // this rank's points (active_dofs, owned or ghost) and the owned
+    // entries other ranks added to in compress() (the partitioner's import
+    // indices). Clearing only them keeps the cost independent of the size
+    // of the empty mesh, on one rank or many.
+    for (const unsigned int i : active_dofs)
+      v.local_element(i) = 0;
+    for (const auto &range : v.get_partitioner()->import_indices())
+      for (unsigned int i = range.first; i < range.second; ++i)
+        v.local_element(i) = 0;
+    v.zero_out_ghost_values();
   }
 
 
@@ -686,17 +691,7 @@ namespace MPM
     auto         point  = particle_handler.begin();
     unsigned int k      = 0;
     if (remap_momentum)
-      {
-        // As zero_nodal_fields(): the entries of this rank's points and
-        // those other ranks added to.
-        nodal_momentum.zero_out_ghost_values();
-        for (const unsigned int i : active_dofs)
-          nodal_momentum.local_element(i) = 0;
-        for (const auto &range :
-             nodal_momentum.get_partitioner()->import_indices())
-          for (unsigned int i = range.first; i < range.second; ++i)
-            nodal_momentum.local_element(i) = 0;
-      }
+      zero_touched_entries(nodal_momentum);
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
         {

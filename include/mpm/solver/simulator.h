@@ -227,6 +227,14 @@ namespace MPM
     zero_nodal_fields();
 
     /**
+     * Zero the entries of @p v that the points of this step wrote: this
+     * rank's active nodes, the owned entries other ranks added to, the
+     * ghosts. Used by zero_nodal_fields() and by MUSL's momentum remap.
+     */
+    void
+    zero_touched_entries(NodalVector &v) const;
+
+    /**
      * Flag the nodal velocity and acceleration vectors as holding valid
      * ghost entries (each rank computes them for its ghost nodes too).
      */
