@@ -33,19 +33,11 @@ namespace MPM
     void
     parse_parameters(ParameterHandler &prm, const std::string &model);
 
-    /// C : eps.
-    SymmetricTensor<2, 3>
-    stress(const SymmetricTensor<2, 3> &strain) const
-    {
-      return lambda * trace(strain) * unit_symmetric_tensor<3>() +
-             2 * shear_modulus * strain;
-    }
-
     /**
-     * stress += C : strain, component by component. The same numbers as
-     * adding stress(strain), without the temporaries; shared by every
-     * model's elastic predictor so that an elastic step of an elasto-plastic
-     * model gives the linear elastic stress to the last bit.
+     * stress += C : strain, with C : eps = lambda tr(eps) I + 2 mu eps,
+     * component by component and without temporaries. Shared by every
+     * model's elastic predictor, so that an elastic step of an
+     * elasto-plastic model gives the linear elastic stress to the last bit.
      */
     void
     add_stress_increment(const SymmetricTensor<2, 3> &strain,
