@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bitset>
 #include <cmath>
+#include <tuple>
 
 namespace MPM
 {
@@ -223,15 +224,21 @@ namespace MPM
             }
       // The main plane (0: s1 - s3, the largest shear) is active in almost
       // every return, so the sets that contain it go first, fewest planes
-      // first. In the flume, 63 % of the returns end on the main plane and
-      // 36 % on the main plane with the tension cutoff of s1 ({0, 3}),
-      // which the order above reached only as the tenth set: 4.3 sets were
-      // tried per plastic point, 1.7 now. The admissible return is unique,
-      // so the order changes the cost, not the result.
+      // first, and among the pairs the one with the tension cutoff of s1
+      // (plane 3) first. In the flume (a replay of 50,780 returns at
+      // t = 0.23 s) 62 % of the returns end on the main plane alone and
+      // 38 % on the main plane with the cutoff of s1 ({0, 3}: sand at zero
+      // confinement near the free surface), under 0.2 % elsewhere. Plane 0
+      // first cut the sets tried per plastic point from 4.3 to 1.7; {0, 3}
+      // before the edges {0, 1} and {0, 2} cuts it to 1.4. The admissible
+      // return is unique, so the order changes the cost, not the result.
+      const auto rank = [](const CandidateSet &set) {
+        return std::make_tuple(!(set.bits & 1u), set.m, !(set.bits & 8u));
+      };
       std::stable_sort(candidate_sets.begin(),
                        candidate_sets.end(),
-                       [](const CandidateSet &a, const CandidateSet &b) {
-                         return (a.bits & 1u) > (b.bits & 1u);
+                       [&rank](const CandidateSet &a, const CandidateSet &b) {
+                         return rank(a) < rank(b);
                        });
     }
 
