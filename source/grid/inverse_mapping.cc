@@ -238,7 +238,8 @@ namespace MPM
     // C / q and q / A. The first is the root that stays finite as A -> 0
     // (the linear, parallelogram, case -C/B), the second goes to infinity
     // then; neither divides by zero.
-    const double q = -0.5 * (B + std::copysign(std::sqrt(discriminant), B));
+    const double sqrt_discriminant = std::sqrt(discriminant);
+    const double q = -0.5 * (B + std::copysign(sqrt_discriminant, B));
     double       roots[2];
     unsigned int n_roots = 0;
     if (q != 0)
@@ -296,7 +297,15 @@ namespace MPM
       return result;
     result.success = true;
 
-    if (newton_polish)
+    // The root's error is round-off in A, B, C amplified by
+    // 1 / |dQ/dt| = 1 / sqrt(disc) at the root, about
+    // eps (|A| + |B| + |C|) / sqrt(disc) for t in [0, 1]. sqrt(disc) is
+    // the Jacobian determinant at the point up to a factor of the cell's
+    // scale, so it is only small (and the polish only worth its cost, a
+    // third of the whole) near a corner of a nearly degenerate cell; at a
+    // quarter of |A| + |B| or more the error stays below about 12 eps.
+    if (newton_polish &&
+        sqrt_discriminant < 0.25 * (std::abs(A) + std::abs(B)))
       {
         // Written out for 2x2 (this step is a third of the cost of the
         // closed form): J = [b + d eta, c + d xi], same singularity test

@@ -128,9 +128,12 @@ namespace MPM
    * point is inside or nearest to the unit square is returned.
    *
    * If @p newton_polish is true (the default), one Newton step on the
-   * bilinear map follows; it removes the error amplified by the quadratic's
-   * conditioning in strongly distorted or very thin cells at the cost of
-   * one evaluation of the map and its Jacobian.
+   * bilinear map follows where the root is ill-conditioned (the square root
+   * of the discriminant, the Jacobian determinant at the point up to the
+   * cell's scale, below a quarter of |A| + |B|: near a corner of a nearly
+   * degenerate cell); it removes the error that the conditioning amplifies
+   * there, at the cost of one evaluation of the map and its Jacobian.
+   * Elsewhere the root is accurate to a few eps and the step is skipped.
    *
    * Fails (success = false) only if the quadratic has no real root, i.e.
    * the point is outside the region the bilinear map of the plane covers
