@@ -243,6 +243,60 @@ namespace MPM
     }
 
 
+    template <unsigned int m>
+    inline DEAL_II_ALWAYS_INLINE bool
+    MohrCoulomb::try_candidate_set(const CandidateSet          &set,
+                                   const std::array<double, 3> &trial,
+                                   const std::array<double, 6> &f_trial,
+                                   const double                 tol,
+                                   const double                 multiplier_tol,
+                                   std::array<double, 3>       &x) const
+    {
+      // f_k(trial - sum_l dgamma_l r_l) = 0 for every active k.
+      std::array<double, 3> dgamma{};
+      for (unsigned int i = 0; i < m; ++i)
+        for (unsigned int j = 0; j < m; ++j)
+          dgamma[i] += set.inverse[i][j] * f_trial[set.active[j]];
+      bool negative_multiplier = false;
+      for (unsigned int i = 0; i < m; ++i)
+        negative_multiplier = negative_multiplier || dgamma[i] < -multiplier_tol;
+      if (negative_multiplier)
+        return false;
+
+      x = trial;
+      if constexpr (m < 3)
+        {
+          for (unsigned int j = 0; j < m; ++j)
+            for (unsigned int d = 0; d < 3; ++d)
+              x[d] -= dgamma[j] * return_direction[set.active[j]][d];
+        }
+      else
+        {
+          // Three planes fix the point: the planes' own intersection,
+          // which puts the apex of a cohesionless material exactly at zero
+          // stress instead of at a rounding residue.
+          if (!set.corner_defined)
+            return false;
+          x = set.corner;
+        }
+
+      if (x[0] < x[1] - tol || x[1] < x[2] - tol)
+        return false;
+      bool admissible = true;
+      for (unsigned int k = 0; k < 6; ++k)
+        admissible = admissible && (plane_value(k, x) <= tol);
+      if (!admissible)
+        return false;
+
+      // Ties within the tolerance are equal principal stresses.
+      if (x[0] < x[1])
+        x[0] = x[1] = 0.5 * (x[0] + x[1]);
+      if (x[1] < x[2])
+        x[1] = x[2] = 0.5 * (x[1] + x[2]);
+      return true;
+    }
+
+
     inline DEAL_II_ALWAYS_INLINE unsigned int
     MohrCoulomb::return_principal_inline(std::array<double, 3> &s) const
     {
@@ -252,18 +306,11 @@ namespace MPM
         {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), bound[0], bound[3]});
       const double tol = relative_tolerance * scale;
 
-      const auto f =
-        [this](const unsigned int k, const std::array<double, 3> &x)
-      {
-        return gradient[k][0] * x[0] + gradient[k][1] * x[1] +
-               gradient[k][2] * x[2] - bound[k];
-      };
-
       std::array<double, 6> f_trial;
       bool                  elastic = true;
       for (unsigned int k = 0; k < 6; ++k)
       {
-        f_trial[k] = f(k, trial);
+        f_trial[k] = plane_value(k, trial);
         elastic    = elastic && (f_trial[k] <= tol);
       }
       if (elastic)
@@ -277,50 +324,18 @@ namespace MPM
       {
         if (!set.independent)
           continue;
-        const unsigned int m = set.m;
-        // f_k(trial - sum_l dgamma_l r_l) = 0 for every active k.
-        std::array<double, 3> dgamma{};
-        for (unsigned int i = 0; i < m; ++i)
-          for (unsigned int j = 0; j < m; ++j)
-            dgamma[i] += set.inverse[i][j] * f_trial[set.active[j]];
-        // (A plain loop: std::any_of was not inlined, a call per set.)
-        bool negative_multiplier = false;
-        for (unsigned int i = 0; i < m; ++i)
-          negative_multiplier =
-            negative_multiplier || dgamma[i] < -multiplier_tol;
-        if (negative_multiplier)
-          continue;
-
-        std::array<double, 3> x = trial;
-        if (m < 3)
-          for (unsigned int j = 0; j < m; ++j)
-            for (unsigned int d = 0; d < 3; ++d)
-              x[d] -= dgamma[j] * return_direction[set.active[j]][d];
-        else
-        {
-          // Three planes fix the point: the planes' own intersection,
-          // which puts the apex of a cohesionless material exactly at zero
-          // stress instead of at a rounding residue.
-          if (!set.corner_defined)
-            continue;
-          x = set.corner;
-        }
-
-        if (x[0] < x[1] - tol || x[1] < x[2] - tol)
-          continue;
-        bool admissible = true;
-        for (unsigned int k = 0; k < 6; ++k)
-          admissible = admissible && (f(k, x) <= tol);
-        if (!admissible)
-          continue;
-
-        // Ties within the tolerance are equal principal stresses.
-        if (x[0] < x[1])
-          x[0] = x[1] = 0.5 * (x[0] + x[1]);
-        if (x[1] < x[2])
-          x[1] = x[2] = 0.5 * (x[1] + x[2]);
-        s = x;
-        return set.bits;
+        std::array<double, 3> x;
+        const bool            found =
+          set.m == 1 ?
+                       try_candidate_set<1>(set, trial, f_trial, tol, multiplier_tol, x) :
+          set.m == 2 ?
+                       try_candidate_set<2>(set, trial, f_trial, tol, multiplier_tol, x) :
+                       try_candidate_set<3>(set, trial, f_trial, tol, multiplier_tol, x);
+        if (found)
+          {
+            s = x;
+            return set.bits;
+          }
       }
 
       // Not reached for phi in (0, 90) and psi in [0, phi] (the unit test

@@ -121,6 +121,34 @@ namespace MPM
       inline unsigned int
       return_principal_inline(std::array<double, 3> &s) const;
 
+      struct CandidateSet;
+
+      /**
+       * The value of plane @p k of the admissible set at principal
+       * stresses @p x: f_k(x) = a_k . x - bound_k (positive outside).
+       */
+      double
+      plane_value(const unsigned int k, const std::array<double, 3> &x) const
+      {
+        return gradient[k][0] * x[0] + gradient[k][1] * x[1] +
+               gradient[k][2] * x[2] - bound[k];
+      }
+
+      /**
+       * Try one candidate set of @p m active planes (a template argument,
+       * so that the loops over the set unroll; the sets are tried in the
+       * order of candidate_sets). On success, @p x holds the returned
+       * principal stresses and the function returns true.
+       */
+      template <unsigned int m>
+      inline bool
+      try_candidate_set(const CandidateSet          &set,
+                        const std::array<double, 3> &trial,
+                        const std::array<double, 6> &f_trial,
+                        const double                 tol,
+                        const double                 multiplier_tol,
+                        std::array<double, 3>       &x) const;
+
       /**
        * Add the deviatoric norm of the plastic strain increment
        * C^-1 (s_trial - s) (principal values) to the state.
