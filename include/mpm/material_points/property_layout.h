@@ -5,6 +5,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,11 @@ namespace MPM
    * Particles::ParticleHandler stores for it. Every point has the fixed
    * slots below; the state variables of its material model (e.g. plastic
    * strain) follow at `state`. Stress and strain are stored with all six
-   * components (xx, yy, zz, xy, yz, xz) in every dimension, because plane
-   * strain has a non-zero sigma_zz that plasticity models need.
+   * components in every dimension, because plane strain has a non-zero
+   * sigma_zz that plasticity models need, in the order in which
+   * SymmetricTensor<2, 3> stores them (xx, yy, zz, xy, xz, yz; see
+   * read_symmetric_tensor()). Files the user reads or writes (point files,
+   * text output) use the Voigt order of voigt_index instead.
    */
   template <int dim>
   struct PropertyLayout
@@ -39,7 +43,9 @@ namespace MPM
   };
 
   /**
-   * Voigt order of the six stored components.
+   * Voigt order (xx, yy, zz, xy, yz, xz) of the six components in the files
+   * the user reads and writes: the stress columns of a point file and of
+   * the text output.
    */
   constexpr unsigned int voigt_index[6][2] = {{0, 0},
                                               {1, 1},
@@ -48,20 +54,38 @@ namespace MPM
                                               {1, 2},
                                               {0, 2}};
 
+  /**
+   * The symmetric tensor stored at @p data (six values in SymmetricTensor's
+   * own order). One block copy: the stress update reads a point's stress
+   * this way and passes it to the material model, which copies it as a
+   * whole; built entry by entry (the stored order used to be Voigt's), its
+   * 8-byte stores could not be forwarded to the model's 16-byte loads, a
+   * stall that was a tenth of the Mohr-Coulomb update's time in the flume.
+   */
+  static_assert(sizeof(SymmetricTensor<2, 3>) == 6 * sizeof(double) &&
+                  SymmetricTensor<2, 3>::component_to_unrolled_index(
+                    TableIndices<2>(0, 2)) == 4 &&
+                  SymmetricTensor<2, 3>::component_to_unrolled_index(
+                    TableIndices<2>(1, 2)) == 5,
+                "The stored order of stress and strain (and the names in "
+                "PropertyLayout::fixed_names()) assume deal.II's order "
+                "xx, yy, zz, xy, xz, yz of six contiguous values.");
+
   inline SymmetricTensor<2, 3>
   read_symmetric_tensor(const double *data)
   {
     SymmetricTensor<2, 3> t;
-    for (unsigned int k = 0; k < 6; ++k)
-      t[voigt_index[k][0]][voigt_index[k][1]] = data[k];
+    std::memcpy(&t.access_raw_entry(0), data, 6 * sizeof(double));
     return t;
   }
 
+  /**
+   * Store @p t at @p data; the inverse of read_symmetric_tensor().
+   */
   inline void
   write_symmetric_tensor(const SymmetricTensor<2, 3> &t, double *data)
   {
-    for (unsigned int k = 0; k < 6; ++k)
-      data[k] = t[voigt_index[k][0]][voigt_index[k][1]];
+    std::memcpy(data, &t.access_raw_entry(0), 6 * sizeof(double));
   }
 
   template <int dim>
@@ -82,7 +106,8 @@ namespace MPM
     for (unsigned int d = 0; d < dim; ++d)
       names.emplace_back("velocity");
     for (const std::string prefix : {"stress_", "strain_"})
-      for (const std::string c : {"xx", "yy", "zz", "xy", "yz", "xz"})
+      // SymmetricTensor's order (read_symmetric_tensor()).
+      for (const std::string c : {"xx", "yy", "zz", "xy", "xz", "yz"})
         names.push_back(prefix + c);
     names.emplace_back("material_id");
     return names;
