@@ -27,6 +27,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
+#include <mpm/materials/isotropic_elasticity.h>
 #include <mpm/materials/mohr_coulomb.h>
 
 #include <algorithm>
@@ -94,6 +95,9 @@ main(int argc, char **argv)
   prm.set("Tension cutoff", 0.);
   MohrCoulomb model;
   model.parse_parameters(prm);
+  // The model's elastic part, for the trial stresses of the mix below.
+  MPM::IsotropicElasticity elasticity;
+  elasticity.parse_parameters(prm, "mohr coulomb");
 
   // Load every point along its own random path, then keep its next
   // increment as the timed input.
@@ -117,14 +121,7 @@ main(int argc, char **argv)
   for (const Input &input : inputs)
     {
       SymmetricTensor<2, 3> trial = input.stress;
-      const double          lambda = 2e6 * 0.3 / (1.3 * 0.4), mu = 2e6 / 2.6;
-      const auto           &e      = input.strain_increment;
-      for (unsigned int a = 0; a < 3; ++a)
-        {
-          trial[a][a] += lambda * trace(e) + 2 * mu * e[a][a];
-          for (unsigned int b = a + 1; b < 3; ++b)
-            trial[a][b] += 2 * mu * e[a][b];
-        }
+      elasticity.add_stress_increment(input.strain_increment, trial);
       const double c = 0.5 * (trial[0][0] + trial[1][1]);
       const double h = 0.5 * (trial[0][0] - trial[1][1]);
       const double r = std::sqrt(h * h + trial[0][1] * trial[0][1]);
