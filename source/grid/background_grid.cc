@@ -452,6 +452,14 @@ namespace MPM
             h = std::min(h, cell_sizes[cell->active_cell_index()]);
         }
     min_cell_size = Utilities::MPI::min(h, mpi_communicator);
+    if constexpr (dim == 2)
+      {
+        bilinear_maps.assign(triangulation.n_active_cells(), {});
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            bilinear_maps[cell->active_cell_index()] =
+              BilinearCellMap(vertices_of_cells[cell->active_cell_index()]);
+      }
 
     dof_handler.distribute_dofs(fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();

@@ -3,6 +3,7 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/grid/bilinear_cell_map.h>
 #include <mpm/grid/inverse_mapping.h>
 
 #include <cmath>
@@ -49,27 +50,6 @@ namespace MPM
 
   namespace
   {
-    /**
-     * The 2D cross product u x v = u_0 v_1 - u_1 v_0.
-     */
-    inline double
-    cross(const Tensor<1, 2> &u, const Tensor<1, 2> &v)
-    {
-      return u[0] * v[1] - u[1] * v[0];
-    }
-
-    /**
-     * Infinity-norm distance of @p xi from the unit square (0 inside).
-     */
-    inline double
-    distance_to_unit_square(const Point<2> &xi)
-    {
-      double distance = 0;
-      for (unsigned int d = 0; d < 2; ++d)
-        distance = std::max({distance, -xi[d], xi[d] - 1.});
-      return distance;
-    }
-
     /**
      * Value (relative to vertex 0) and Jacobian of the multilinear map at
      * @p xi, for vertices given relative to vertex 0. Working relative to
@@ -168,162 +148,7 @@ namespace MPM
                           const Point<2>                &x,
                           const bool                     newton_polish)
   {
-    // x(xi, eta) = v0 + b xi + c eta + d xi eta in deal.II's reference
-    // cell. d is formed from two edge vectors so that it is exactly zero for
-    // an exact parallelogram.
-    const Tensor<1, 2> b = vertices[1] - vertices[0];
-    const Tensor<1, 2> c = vertices[2] - vertices[0];
-    const Tensor<1, 2> d = (vertices[3] - vertices[2]) - b;
-    const Tensor<1, 2> r = x - vertices[0];
-
-    // A parallelogram (d zero up to round-off in the vertex coordinates,
-    // which structured and slope-aligned meshes consist of) has an affine
-    // map: x - v0 = b xi + c eta is solved exactly by Cramer's rule, at a
-    // third of the cost of the general case and without the Newton polish.
-    // Neglecting d of 1e-14 |b, c| errs by less than 1e-14 in xi.
-    const double area = cross(b, c);
-    if (d.norm_square() <= 1e-28 * (b.norm_square() + c.norm_square()) &&
-        area != 0)
-      {
-        InverseMappingResult<2> affine;
-        affine.xi      = Point<2>(cross(r, c) / area, cross(b, r) / area);
-        affine.success = true;
-        return affine;
-      }
-
-    // Crossing r - c eta = (b + d eta) xi with (b + d eta) eliminates xi:
-    //   (c x d) eta^2 + (c x b - r x d) eta + b x r = 0,
-    // and crossing r - b xi = (c + d xi) eta with (c + d xi) eliminates eta:
-    //   (b x d) xi^2 + (b x c - r x d) xi + c x r = 0.
-    // Both share the area term b x c in the linear coefficient; solve the
-    // one whose leading coefficient is smaller, i.e. which is closer to
-    // linear: its second root is farther away and the wanted root better
-    // conditioned. For a trapezoid with d parallel to b, b x d = 0 and the
-    // xi equation is exactly linear.
-    const double cd            = cross(c, d);
-    const double bd            = cross(b, d);
-    const bool   solve_for_eta = std::abs(cd) <= std::abs(bd);
-    const double rd            = cross(r, d);
-    double       A, B, C;
-    if (solve_for_eta)
-      {
-        A = cd;
-        B = cross(c, b) - rd;
-        C = cross(b, r);
-      }
-    else
-      {
-        A = bd;
-        B = cross(b, c) - rd;
-        C = cross(c, r);
-      }
-
-    InverseMappingResult<2> result;
-    result.xi = Point<2>(std::numeric_limits<double>::quiet_NaN(),
-                         std::numeric_limits<double>::quiet_NaN());
-
-    double discriminant = B * B - 4. * A * C;
-    if (discriminant < 0)
-      {
-        // A slightly negative discriminant is round-off around a double
-        // root (singular Jacobian at the solution); anything more means
-        // that no point of the plane maps to x.
-        if (discriminant >= -1e-14 * (B * B + 4. * std::abs(A * C)))
-          discriminant = 0;
-        else
-          return result;
-      }
-
-    // Roots without cancellation: q = -(B + sign(B) sqrt(disc)) / 2, roots
-    // C / q and q / A. The first is the root that stays finite as A -> 0
-    // (the linear, parallelogram, case -C/B), the second goes to infinity
-    // then; neither divides by zero.
-    const double sqrt_discriminant = std::sqrt(discriminant);
-    const double q = -0.5 * (B + std::copysign(sqrt_discriminant, B));
-    double       roots[2];
-    unsigned int n_roots = 0;
-    if (q != 0)
-      {
-        roots[n_roots++] = C / q;
-        if (A != 0)
-          roots[n_roots++] = q / A;
-      }
-    else if (A != 0)
-      // B = 0 and disc = 0, so C = 0 as well: double root at 0.
-      roots[n_roots++] = 0;
-    else
-      // A = B = 0: the map does not determine this coordinate (degenerate
-      // cell).
-      return result;
-
-    // For each root, the other coordinate from the remaining linear
-    // equation (r - c eta) = (b + d eta) xi (or the one with xi and eta
-    // exchanged), solved in the least-squares sense: this uses both
-    // components and needs no choice of which one to divide by.
-    double best_distance = std::numeric_limits<double>::infinity();
-    double best_centre   = std::numeric_limits<double>::infinity();
-    for (unsigned int k = 0; k < n_roots; ++k)
-      {
-        const double t = roots[k];
-        if (!std::isfinite(t))
-          continue;
-        const Tensor<1, 2> e      = solve_for_eta ? b + d * t : c + d * t;
-        const Tensor<1, 2> rhs    = solve_for_eta ? r - c * t : r - b * t;
-        const double       e_norm = e * e;
-        if (!(e_norm > 0))
-          continue;
-        const double   s  = (rhs * e) / e_norm;
-        const Point<2> xi = solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
-        const double   distance = distance_to_unit_square(xi);
-        const double   centre =
-          std::max(std::abs(xi[0] - 0.5), std::abs(xi[1] - 0.5));
-        if (distance < best_distance ||
-            (distance == best_distance && centre < best_centre))
-          {
-            best_distance = distance;
-            best_centre   = centre;
-            result.xi     = xi;
-          }
-        // A root inside the unit square is the answer: the map of a convex
-        // cell (which the mesh check guarantees) is one-to-one on the
-        // square, so the other root lies outside and could not win. The
-        // first root, C / q, is the one inside for all but strongly
-        // non-parallel cells: skipping the second saves a third of the
-        // cost of the most common case (a point that stayed in its cell).
-        if (best_distance == 0)
-          break;
-      }
-    if (!std::isfinite(best_distance))
-      return result;
-    result.success = true;
-
-    // The root's error is round-off in A, B, C amplified by
-    // 1 / |dQ/dt| = 1 / sqrt(disc) at the root, about
-    // eps (|A| + |B| + |C|) / sqrt(disc) for t in [0, 1]. sqrt(disc) is
-    // the Jacobian determinant at the point up to a factor of the cell's
-    // scale, so it is only small (and the polish only worth its cost, a
-    // third of the whole) near a corner of a nearly degenerate cell; at a
-    // quarter of |A| + |B| or more the error stays below about 12 eps.
-    if (newton_polish &&
-        sqrt_discriminant < 0.25 * (std::abs(A) + std::abs(B)))
-      {
-        // Written out for 2x2 (this step is a third of the cost of the
-        // closed form): J = [b + d eta, c + d xi], same singularity test
-        // as is_singular() without its square roots.
-        const double xi = result.xi[0], eta = result.xi[1];
-        const auto   residual = b * xi + c * eta + d * (xi * eta) - r;
-        const double j00 = b[0] + d[0] * eta, j10 = b[1] + d[1] * eta;
-        const double j01 = c[0] + d[0] * xi, j11 = c[1] + d[1] * xi;
-        const double det = j00 * j11 - j01 * j10;
-        if (det * det >
-            1e-28 * (j00 * j00 + j10 * j10) * (j01 * j01 + j11 * j11))
-          {
-            result.xi[0] -= (j11 * residual[0] - j01 * residual[1]) / det;
-            result.xi[1] -= (j00 * residual[1] - j10 * residual[0]) / det;
-            result.n_iterations = 1;
-          }
-      }
-    return result;
+    return BilinearCellMap(vertices).inverse(x, newton_polish);
   }
 
 

@@ -101,9 +101,28 @@ namespace MPM
     const bool by_vertices = inverse_type != InverseMappingType::dealii;
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
-        const CellIterator cell     = it->get_surrounding_cell();
-        const auto         points   = particle_handler.particles_in_cell(cell);
-        const auto        &vertices = grid->cell_vertices(cell);
+        const CellIterator cell   = it->get_surrounding_cell();
+        const auto         points = particle_handler.particles_in_cell(cell);
+        if constexpr (dim == 2)
+          if (inverse_type == InverseMappingType::closed_form)
+            {
+              // The closed form inlined with the cell's precomputed part:
+              // this loop is the whole cost of locating the points.
+              const BilinearCellMap &map = grid->bilinear_map(cell);
+              for (auto point = points.begin(); point != points.end(); ++point)
+                {
+                  const auto result = map.inverse(point->get_location());
+                  if (result.success && inside_unit_cell(result.xi))
+                    point->set_reference_location(result.xi);
+                  else
+                    leavers.push_back(point);
+                }
+              stats.n_points_mapped +=
+                particle_handler.n_particles_in_cell(cell);
+              it = points.end();
+              continue;
+            }
+        const auto &vertices = grid->cell_vertices(cell);
         for (auto point = points.begin(); point != points.end(); ++point)
           {
             const Point<dim> x = point->get_location();

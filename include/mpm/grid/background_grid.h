@@ -12,6 +12,8 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_q1.h>
 
+#include <mpm/grid/bilinear_cell_map.h>
+
 #include <array>
 #include <string>
 
@@ -99,6 +101,20 @@ namespace MPM
       const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
       return vertices_of_cells[cell->active_cell_index()];
+    }
+
+    /**
+     * The bilinear map of each locally relevant active cell in the form
+     * the closed-form inverse mapping and the shape functions use it,
+     * indexed by active_cell_index(); computed once, like the vertices.
+     * 2D only (empty in 3D).
+     */
+    const BilinearCellMap &
+    bilinear_map(
+      const typename Triangulation<dim>::active_cell_iterator &cell) const
+    {
+      AssertIndexRange(cell->active_cell_index(), bilinear_maps.size());
+      return bilinear_maps[cell->active_cell_index()];
     }
 
     /**
@@ -190,6 +206,7 @@ namespace MPM
     std::vector<double> cell_sizes;
     std::vector<std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>>
       vertices_of_cells;
+    std::vector<BilinearCellMap> bilinear_maps;
   };
 } // namespace MPM
 
