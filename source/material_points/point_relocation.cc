@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <utility>
 #include <array>
 
 namespace MPM
@@ -71,31 +72,12 @@ namespace MPM
   PointRelocation<dim>::relocate(
     Particles::ParticleHandler<dim> &particle_handler)
   {
-    const MPI_Comm comm = grid->triangulation.get_communicator();
     if (!incremental)
       {
         particle_handler.sort_particles_into_subdomains_and_cells();
         ++stats.n_full_sorts;
         return;
       }
-
-    struct Move
-    {
-      Point<dim>            location;
-      Point<dim>            reference_location;
-      types::particle_index id;
-      CellIterator          cell;
-      unsigned int          first_property;
-    };
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-                        leavers;
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-                        lost;
-    std::vector<Move>   moves;
-    // Per destination rank: the points that moved into its cells.
-    std::map<unsigned int, std::vector<double>> sends;
-    std::vector<double> properties;
-    bool                need_full_sort = false;
 
     // 1. Every point in its old cell, cell by cell.
     const bool by_vertices = inverse_type != InverseMappingType::dealii;
@@ -115,7 +97,7 @@ namespace MPM
                   if (result.success && inside_unit_cell(result.xi))
                     point->set_reference_location(result.xi);
                   else
-                    leavers.push_back(point);
+                    leavers_of_this_step.push_back(point);
                 }
               stats.n_points_mapped +=
                 particle_handler.n_particles_in_cell(cell);
@@ -133,11 +115,40 @@ namespace MPM
             if (result.success && inside_unit_cell(result.xi))
               point->set_reference_location(result.xi);
             else
-              leavers.push_back(point);
+              leavers_of_this_step.push_back(point);
           }
         stats.n_points_mapped += particle_handler.n_particles_in_cell(cell);
         it = points.end();
       }
+
+    relocate_leavers(particle_handler);
+  }
+
+
+  template <int dim>
+  void
+  PointRelocation<dim>::relocate_leavers(
+    Particles::ParticleHandler<dim> &particle_handler)
+  {
+    const MPI_Comm comm = grid->triangulation.get_communicator();
+    // Taken over from step 1, which starts empty in the next step.
+    const std::vector<ParticleIterator> leavers =
+      std::exchange(leavers_of_this_step, {});
+    struct Move
+    {
+      Point<dim>            location;
+      Point<dim>            reference_location;
+      types::particle_index id;
+      CellIterator          cell;
+      unsigned int          first_property;
+    };
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+                        lost;
+    std::vector<Move>   moves;
+    // Per destination rank: the points that moved into its cells.
+    std::map<unsigned int, std::vector<double>> sends;
+    std::vector<double> properties;
+    bool                need_full_sort = false;
 
     // 2. The points that left: first the cells around the old one, then
     //    the whole mesh.

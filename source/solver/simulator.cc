@@ -469,14 +469,29 @@ namespace MPM
                 dof_is_active[local] = 1;
                 active_dofs.push_back(local);
               }
+        if constexpr (dim == 2)
+          active.map = &grid.bilinear_map(cell);
         active_cells.push_back(active);
 
-        const auto &vertices = grid.cell_vertices(cell);
-        for (auto point = points.begin(); point != points.end(); ++point)
+        if constexpr (dim == 2)
           {
-            point_properties[k] = point->get_properties().data();
-            shape_functions[k++].reinit(vertices,
-                                        point->get_reference_location());
+            const BilinearCellMap &map = *active.map;
+            for (auto point = points.begin(); point != points.end(); ++point)
+              {
+                point_properties[k] = point->get_properties().data();
+                shape_functions[k++].reinit(map,
+                                            point->get_reference_location());
+              }
+          }
+        else
+          {
+            const auto &vertices = grid.cell_vertices(cell);
+            for (auto point = points.begin(); point != points.end(); ++point)
+              {
+                point_properties[k] = point->get_properties().data();
+                shape_functions[k++].reinit(vertices,
+                                            point->get_reference_location());
+              }
           }
         it = points.end();
       }
@@ -690,6 +705,9 @@ namespace MPM
     double       v_max2 = 0;
     auto         point  = particle_handler.begin();
     unsigned int k      = 0;
+    // Step 1 of the point location, with each new position at hand.
+    const bool locate_while_moving =
+      point_relocation.can_locate_while_moving();
     if (remap_momentum)
       zero_touched_entries(nodal_momentum);
     for (const auto &cell : active_cells)
@@ -713,6 +731,8 @@ namespace MPM
               x[c] += dt * v_new[c];
             }
           point->set_location(x);
+          if (locate_while_moving)
+            point_relocation.locate_in_cell(*cell.map, point, x);
           if (remap_momentum)
             {
               const double m = props[Layout::mass];
@@ -869,7 +889,11 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "locate points");
     const auto n_lost_before = n_lost_points;
-    point_relocation.relocate(particle_handler);
+    if (point_relocation.can_locate_while_moving())
+      // Step 1 was done by update_points_from_grid().
+      point_relocation.relocate_leavers(particle_handler);
+    else
+      point_relocation.relocate(particle_handler);
     const auto n_new_lost =
       Utilities::MPI::sum(n_lost_points - n_lost_before, mpi_communicator);
     if (n_new_lost > 0 && error_on_lost_points)

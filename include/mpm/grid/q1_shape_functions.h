@@ -5,6 +5,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/grid/bilinear_cell_map.h>
+
 #include <array>
 
 namespace MPM
@@ -26,6 +28,44 @@ namespace MPM
 
     std::array<double, n_vertices>         value;
     std::array<Tensor<1, dim>, n_vertices> gradient;
+
+    /**
+     * Evaluate at reference point @p xi of the quadrilateral whose map
+     * is @p map (2D). The Jacobian comes from the map's edge vectors,
+     * [b + d eta, c + d xi]: four products instead of sixteen, and
+     * relative to the cell's first vertex, so without the cancellation of
+     * summing absolute vertex coordinates (the same numbers as the other
+     * reinit() up to round-off).
+     */
+    void
+    reinit(const BilinearCellMap &map, const Point<dim> &xi)
+    {
+      if constexpr (dim == 2)
+        {
+          const double x = xi[0], y = xi[1];
+          const double ox = 1. - x, oy = 1. - y;
+          value = {{ox * oy, x * oy, ox * y, x * y}};
+          const double g[4][2] = {{-oy, -ox}, {oy, -x}, {-y, ox}, {y, x}};
+          const auto   j       = map.jacobian(xi);
+          const double inverse_determinant =
+            1.0 / (j[0][0] * j[1][1] - j[1][0] * j[0][1]);
+          const double t00 = j[1][1] * inverse_determinant;
+          const double t01 = -j[1][0] * inverse_determinant;
+          const double t10 = -j[0][1] * inverse_determinant;
+          const double t11 = j[0][0] * inverse_determinant;
+          for (unsigned int i = 0; i < 4; ++i)
+            {
+              gradient[i][0] = t00 * g[i][0] + t01 * g[i][1];
+              gradient[i][1] = t10 * g[i][0] + t11 * g[i][1];
+            }
+        }
+      else
+        {
+          (void)map;
+          (void)xi;
+          Assert(false, ExcMessage("BilinearCellMap is 2D only."));
+        }
+    }
 
     /**
      * Evaluate at reference point @p xi of the cell with @p vertices.

@@ -167,6 +167,9 @@ namespace MPM
       unsigned int                                  n_points;
       std::array<std::array<unsigned int, dim>,
                  GeometryInfo<dim>::vertices_per_cell> dofs;
+      /// The cell's bilinear map (2D; nullptr in 3D), with which the
+      /// grid-to-particle pass locates the points it moves.
+      const BilinearCellMap *map = nullptr;
     };
 
     void
