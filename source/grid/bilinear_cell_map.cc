@@ -5,23 +5,22 @@
 
 namespace MPM
 {
-  void
-  BilinearCellMap::polish(const Tensor<1, 2>      &r,
-                          InverseMappingResult<2> &result) const
+  bool
+  BilinearCellMap::polish(const Tensor<1, 2> &r, Point<2> &xi) const
   {
     // Written out for 2x2: J = [b + d eta, c + d xi], same singularity test
     // as for a general Jacobian, without its square roots.
-    const double xi = result.xi[0], eta = result.xi[1];
-    const auto   residual = b * xi + c * eta + d * (xi * eta) - r;
-    const double j00 = b[0] + d[0] * eta, j10 = b[1] + d[1] * eta;
-    const double j01 = c[0] + d[0] * xi, j11 = c[1] + d[1] * xi;
+    const double x = xi[0], y = xi[1];
+    const auto   residual = b * x + c * y + d * (x * y) - r;
+    const double j00 = b[0] + d[0] * y, j10 = b[1] + d[1] * y;
+    const double j01 = c[0] + d[0] * x, j11 = c[1] + d[1] * x;
     const double det = j00 * j11 - j01 * j10;
-    if (det * det > 1e-28 * (j00 * j00 + j10 * j10) * (j01 * j01 + j11 * j11))
-      {
-        result.xi[0] -= (j11 * residual[0] - j01 * residual[1]) / det;
-        result.xi[1] -= (j00 * residual[1] - j10 * residual[0]) / det;
-        result.n_iterations = 1;
-      }
+    if (!(det * det >
+          1e-28 * (j00 * j00 + j10 * j10) * (j01 * j01 + j11 * j11)))
+      return false;
+    xi[0] -= (j11 * residual[0] - j01 * residual[1]) / det;
+    xi[1] -= (j00 * residual[1] - j10 * residual[0]) / det;
+    return true;
   }
 
 
@@ -35,7 +34,7 @@ namespace MPM
                          std::numeric_limits<double>::quiet_NaN());
     if (affine)
       {
-        result.xi      = Point<2>(cross(r, c) / area, cross(b, r) / area);
+        result.xi      = affine_inverse(r);
         result.success = true;
         return result;
       }
@@ -117,8 +116,9 @@ namespace MPM
     if (!std::isfinite(best_distance))
       return result;
     result.success = true;
-    if (newton_polish && needs_polish(sqrt_discriminant, B))
-      polish(r, result);
+    if (newton_polish && needs_polish(sqrt_discriminant, B) &&
+        polish(r, result.xi))
+      result.n_iterations = 1;
     return result;
   }
 } // namespace MPM

@@ -93,9 +93,9 @@ namespace MPM
               const BilinearCellMap &map = grid->bilinear_map(cell);
               for (auto point = points.begin(); point != points.end(); ++point)
                 {
-                  const auto result = map.inverse(point->get_location());
-                  if (result.success && inside_unit_cell(result.xi))
-                    point->set_reference_location(result.xi);
+                  Point<2> xi;
+                  if (map.contains(point->get_location(), xi))
+                    point->set_reference_location(xi);
                   else
                     leavers_of_this_step.push_back(point);
                 }

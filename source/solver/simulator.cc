@@ -722,14 +722,17 @@ namespace MPM
                 v_new[c] +=
                   N[i] * nodal_velocity_new.local_element(cell.dofs[i][c]);
               }
-          auto       props = point->get_properties();
-          Point<dim> x     = point->get_location();
+          auto props = point->get_properties();
           for (unsigned int c = 0; c < dim; ++c)
             {
               double &v = props[Layout::velocity + c];
               v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
-              x[c] += dt * v_new[c];
             }
+          // As one Tensor expression: built component by component, the
+          // new position was stored as two scalars and read back as one
+          // 16-byte value for set_location(), a store-forwarding stall
+          // that was a tenth of this loop.
+          const Point<dim> x = point->get_location() + dt * v_new;
           point->set_location(x);
           if (locate_while_moving)
             point_relocation.locate_in_cell(*cell.map, point, x);

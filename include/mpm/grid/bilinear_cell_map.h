@@ -90,48 +90,47 @@ namespace MPM
     InverseMappingResult<2>
     inverse(const Point<2> &x, const bool newton_polish = true) const
     {
-      const Tensor<1, 2> r = x - origin;
+      const Tensor<1, 2>      r = x - origin;
       InverseMappingResult<2> result;
       if (affine)
         {
-          result.xi      = Point<2>(cross(r, c) / area, cross(b, r) / area);
+          result.xi      = affine_inverse(r);
           result.success = true;
           return result;
         }
-      // The common case: the root that stays finite as A -> 0, C / q, is
-      // the one inside the cell (it is for all but strongly non-parallel
-      // cells, and for every point that stayed in its cell).
-      const double B            = B_of_cell - cross(r, d);
-      const double C            = cross(u, r);
-      const double discriminant = B * B - 4. * A * C;
-      if (discriminant >= 0)
+      if (first_root_inside(r, newton_polish, result.xi, result.n_iterations))
         {
-          const double sqrt_discriminant = std::sqrt(discriminant);
-          const double q = -0.5 * (B + std::copysign(sqrt_discriminant, B));
-          if (q != 0)
-            {
-              const double t = C / q;
-              // The other coordinate from (r - w t) = (u + d t) s, in the
-              // least-squares sense.
-              const Tensor<1, 2> e      = u + d * t;
-              const Tensor<1, 2> rhs    = r - w * t;
-              const double       e_norm = e * e;
-              if (std::isfinite(t) && e_norm > 0)
-                {
-                  const double s = (rhs * e) / e_norm;
-                  result.xi = solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
-                  if (result.xi[0] >= 0 && result.xi[0] <= 1 &&
-                      result.xi[1] >= 0 && result.xi[1] <= 1)
-                    {
-                      result.success = true;
-                      if (newton_polish && needs_polish(sqrt_discriminant, B))
-                        polish(r, result);
-                      return result;
-                    }
-                }
-            }
+          result.success = true;
+          return result;
         }
       return inverse_general(x, newton_polish);
+    }
+
+    /**
+     * Whether @p x lies in the cell (inside_unit_cell() of its reference
+     * coordinates, with the default tolerance), and if so its reference
+     * coordinates @p xi: the same as inverse() followed by
+     * inside_unit_cell(), for the loops over the points, which only need
+     * to know whether a point stayed in its cell. (Through the result
+     * struct, GCC copied the success flag and the iteration count as one
+     * 8-byte word right after writing them separately: a store-forwarding
+     * stall on every point.)
+     */
+    bool
+    contains(const Point<2> &x, Point<2> &xi) const
+    {
+      const Tensor<1, 2> r = x - origin;
+      if (affine)
+        {
+          xi = affine_inverse(r);
+          return inside_unit_cell(xi);
+        }
+      unsigned int n_iterations = 0;
+      if (first_root_inside(r, true, xi, n_iterations))
+        return n_iterations == 0 || inside_unit_cell(xi);
+      const auto result = inverse_general(x, true);
+      xi                = result.xi;
+      return result.success && inside_unit_cell(xi);
     }
 
     /**
@@ -146,6 +145,57 @@ namespace MPM
     }
 
   private:
+    /**
+     * Cramer's rule for a parallelogram: x - v0 = b xi + c eta.
+     */
+    Point<2>
+    affine_inverse(const Tensor<1, 2> &r) const
+    {
+      return Point<2>(cross(r, c) / area, cross(b, r) / area);
+    }
+
+    /**
+     * The common case of the closed form: the root that stays finite as
+     * A -> 0, C / q, is the one inside the cell (it is for all but
+     * strongly non-parallel cells, and for every point that stayed in its
+     * cell). If that root's reference point lies in the closed unit
+     * square, stores it in @p xi (polished where ill-conditioned, if
+     * @p newton_polish; then @p n_iterations = 1) and returns true; otherwise
+     * returns false and the caller goes to inverse_general().
+     */
+    bool
+    first_root_inside(const Tensor<1, 2> &r,
+                      const bool          newton_polish,
+                      Point<2>           &xi,
+                      unsigned int       &n_iterations) const
+    {
+      const double B            = B_of_cell - cross(r, d);
+      const double C            = cross(u, r);
+      const double discriminant = B * B - 4. * A * C;
+      if (!(discriminant >= 0))
+        return false;
+      const double sqrt_discriminant = std::sqrt(discriminant);
+      const double q = -0.5 * (B + std::copysign(sqrt_discriminant, B));
+      if (q == 0)
+        return false;
+      const double t = C / q;
+      // The other coordinate from (r - w t) = (u + d t) s, in the
+      // least-squares sense.
+      const Tensor<1, 2> e      = u + d * t;
+      const Tensor<1, 2> rhs    = r - w * t;
+      const double       e_norm = e * e;
+      if (!(std::isfinite(t) && e_norm > 0))
+        return false;
+      const double s = (rhs * e) / e_norm;
+      xi             = solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
+      if (!(xi[0] >= 0 && xi[0] <= 1 && xi[1] >= 0 && xi[1] <= 1))
+        return false;
+      if (newton_polish && needs_polish(sqrt_discriminant, B) &&
+          polish(r, xi))
+        n_iterations = 1;
+      return true;
+    }
+
     /**
      * The 2D cross product u x v = u_0 v_1 - u_1 v_0.
      */
@@ -171,10 +221,11 @@ namespace MPM
     }
 
     /**
-     * One Newton step on the map from @p result.xi towards @p r = x - v0.
+     * One Newton step on the map from @p xi towards @p r = x - v0; false
+     * (and no step) where the Jacobian is singular.
      */
-    void
-    polish(const Tensor<1, 2> &r, InverseMappingResult<2> &result) const;
+    bool
+    polish(const Tensor<1, 2> &r, Point<2> &xi) const;
 
     /**
      * Every case of the closed form: both roots, the one inside or nearest

@@ -109,9 +109,9 @@ namespace MPM
     {
       if constexpr (dim == 2)
         {
-          const auto result = map.inverse(x);
-          if (result.success && inside_unit_cell(result.xi))
-            point->set_reference_location(result.xi);
+          Point<2> xi;
+          if (map.contains(x, xi))
+            point->set_reference_location(xi);
           else
             leavers_of_this_step.push_back(point);
           ++stats.n_points_mapped;
