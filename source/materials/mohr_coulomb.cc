@@ -177,6 +177,13 @@ namespace MPM
         for (unsigned int i = 0; i < 3; ++i)
           return_direction[s][i] =
             elasticity.lambda * tr + 2 * elasticity.shear_modulus * flow[s][i];
+        const auto  &r    = return_direction[s];
+        const double mean = (r[0] + r[1] + r[2]) * (1. / 3.);
+        double       e2   = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          e2 += (r[i] - mean) * (r[i] - mean);
+        shear_strain_per_multiplier[s] =
+          std::sqrt(2. / 3. * e2) * inverse_two_shear_modulus;
       }
 
       // Candidate sets of at most three surfaces (three independent planes
@@ -250,7 +257,8 @@ namespace MPM
                                    const std::array<double, 6> &f_trial,
                                    const double                 tol,
                                    const double                 multiplier_tol,
-                                   std::array<double, 3>       &x) const
+                                   std::array<double, 3>       &x,
+                                   double &first_multiplier) const
     {
       // f_k(trial - sum_l dgamma_l r_l) = 0 for every active k.
       std::array<double, 3> dgamma{};
@@ -262,6 +270,7 @@ namespace MPM
         negative_multiplier = negative_multiplier || dgamma[i] < -multiplier_tol;
       if (negative_multiplier)
         return false;
+      first_multiplier = dgamma[0];
 
       x = trial;
       if constexpr (m < 3)
@@ -298,8 +307,11 @@ namespace MPM
 
 
     inline DEAL_II_ALWAYS_INLINE unsigned int
-    MohrCoulomb::return_principal_inline(std::array<double, 3> &s) const
+    MohrCoulomb::return_principal_inline(
+      std::array<double, 3> &s,
+      double                &plastic_shear_increment) const
     {
+      plastic_shear_increment = -1;
       const std::array<double, 3> trial = s;
 
       const double scale = std::max(
@@ -325,15 +337,20 @@ namespace MPM
         if (!set.independent)
           continue;
         std::array<double, 3> x;
+        double                dgamma = 0;
         const bool            found =
           set.m == 1 ?
-                       try_candidate_set<1>(set, trial, f_trial, tol, multiplier_tol, x) :
+                       try_candidate_set<1>(set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
           set.m == 2 ?
-                       try_candidate_set<2>(set, trial, f_trial, tol, multiplier_tol, x) :
-                       try_candidate_set<3>(set, trial, f_trial, tol, multiplier_tol, x);
+                       try_candidate_set<2>(set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
+                       try_candidate_set<3>(set, trial, f_trial, tol, multiplier_tol, x, dgamma);
         if (found)
           {
             s = x;
+            if (set.m == 1)
+              plastic_shear_increment =
+                std::abs(dgamma) *
+                shear_strain_per_multiplier[set.active[0]];
             return set.bits;
           }
       }
@@ -349,7 +366,8 @@ namespace MPM
     unsigned int
     MohrCoulomb::return_principal(std::array<double, 3> &s) const
     {
-      return return_principal_inline(s);
+      double plastic_shear_increment;
+      return return_principal_inline(s, plastic_shear_increment);
     }
 
 
@@ -418,12 +436,16 @@ namespace MPM
           else
             s = {{major, minor, szz}};
           const std::array<double, 3> s_trial = s;
-          if (return_principal_inline(s) == 0)
+          double                      plastic_shear_increment;
+          if (return_principal_inline(s, plastic_shear_increment) == 0)
             {
               stress = trial;
               return;
             }
-          accumulate_plastic_strain(s_trial, s, state);
+          if (plastic_shear_increment >= 0)
+            state[0] += plastic_shear_increment;
+          else
+            accumulate_plastic_strain(s_trial, s, state);
           const double new_zz    = s[z_position];
           const double new_major = s[z_position == 0 ? 1 : 0];
           const double new_minor = s[z_position == 2 ? 1 : 2];
@@ -465,7 +487,8 @@ namespace MPM
       s = {{eigen[0].first, eigen[1].first, eigen[2].first}};
       const std::array<double, 3> s_trial = s;
 
-      if (return_principal_inline(s) == 0)
+      double plastic_shear_increment;
+      if (return_principal_inline(s, plastic_shear_increment) == 0)
       {
         stress = trial;
         return;
@@ -475,7 +498,10 @@ namespace MPM
       for (unsigned int i = 0; i < 3; ++i)
         stress +=
           s[i] * symmetrize(outer_product(eigen[i].second, eigen[i].second));
-      accumulate_plastic_strain(s_trial, s, state);
+      if (plastic_shear_increment >= 0)
+        state[0] += plastic_shear_increment;
+      else
+        accumulate_plastic_strain(s_trial, s, state);
     }
 
 
