@@ -180,9 +180,13 @@ namespace MPM
         return false;
       const double t = C / q;
       // The other coordinate from (r - w t) = (u + d t) s, in the
-      // least-squares sense.
-      const Tensor<1, 2> e      = u + d * t;
-      const Tensor<1, 2> rhs    = r - w * t;
+      // least-squares sense, s = (r - w t).(u + d t) / |u + d t|^2, with
+      // both vectors multiplied by q (t = C / q): the same quotient, but
+      // independent of the division for t, so that the two divisions run
+      // side by side instead of one after the other (this chain of
+      // square root and divisions is most of the cost of the inverse map).
+      const Tensor<1, 2> e      = u * q + d * C;
+      const Tensor<1, 2> rhs    = r * q - w * C;
       const double       e_norm = e * e;
       if (!(std::isfinite(t) && e_norm > 0))
         return false;
