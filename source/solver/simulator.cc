@@ -553,24 +553,38 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "particle to grid");
     using Layout           = PropertyLayout<dim>;
-    const Tensor<1, dim> g = time_stepping.gravity;
-    unsigned int         k = 0;
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    const Tensor<1, dim>   g          = time_stepping.gravity;
+    unsigned int           k          = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        {
-          const double *props = point_properties[k];
-          const double  m     = props[Layout::mass];
-          const auto   &sf    = shape_functions[k];
-          for (unsigned int i = 0; i < sf.value.size(); ++i)
-            for (unsigned int c = 0; c < dim; ++c)
+      {
+        // Summed over the cell's points first and added to the nodes once
+        // per cell: added point by point, every point waited for the
+        // previous point's load-add-store of the same nodal entries.
+        std::array<Tensor<1, dim>, n_vertices> mass, momentum, forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const double *props = point_properties[k];
+            const double  m     = props[Layout::mass];
+            const auto    v     = read_vector<dim>(&props[Layout::velocity]);
+            const auto   &sf    = shape_functions[k];
+            for (unsigned int i = 0; i < n_vertices; ++i)
               {
-                nodal_mass.local_element(cell.dofs[i][c]) += sf.value[i] * m;
-                nodal_momentum.local_element(cell.dofs[i][c]) +=
-                  sf.value[i] * m * props[Layout::velocity + c];
+                const double mi = sf.value[i] * m;
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    mass[i][c] += mi;
+                    momentum[i][c] += mi * v[c];
+                  }
               }
-          if (with_forces)
-            add_point_forces(props, sf, g, cell);
-        }
+            if (with_forces)
+              add_point_forces(props, sf, g, forces);
+          }
+        add_to_nodes(cell, mass, nodal_mass);
+        add_to_nodes(cell, momentum, nodal_momentum);
+        if (with_forces)
+          add_to_nodes(cell, forces, nodal_force);
+      }
     nodal_mass.compress(VectorOperation::add);
     nodal_momentum.compress(VectorOperation::add);
     nodal_mass.update_ghost_values();
@@ -580,6 +594,20 @@ namespace MPM
         nodal_force.compress(VectorOperation::add);
         nodal_force.update_ghost_values();
       }
+  }
+
+
+  template <int dim>
+  inline void
+  Simulator<dim>::add_to_nodes(
+    const ActiveCell &cell,
+    const std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+                &values,
+    NodalVector &v) const
+  {
+    for (unsigned int i = 0; i < GeometryInfo<dim>::vertices_per_cell; ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        v.local_element(cell.dofs[i][c]) += values[i][c];
   }
 
 
@@ -600,10 +628,12 @@ namespace MPM
 
   template <int dim>
   inline void
-  Simulator<dim>::add_point_forces(const double                *props,
-                                   const Q1ShapeFunctions<dim> &sf,
-                                   const Tensor<1, dim>        &g,
-                                   const ActiveCell            &cell)
+  Simulator<dim>::add_point_forces(
+    const double                *props,
+    const Q1ShapeFunctions<dim> &sf,
+    const Tensor<1, dim>        &g,
+    std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> &forces)
+    const
   {
     using Layout   = PropertyLayout<dim>;
     const double m = props[Layout::mass];
@@ -617,12 +647,7 @@ namespace MPM
       for (unsigned int b = 0; b < dim; ++b)
         sigma[a][b] = stress[a][b];
     for (unsigned int i = 0; i < sf.value.size(); ++i)
-      {
-        const Tensor<1, dim> f =
-          -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
-        for (unsigned int c = 0; c < dim; ++c)
-          nodal_force.local_element(cell.dofs[i][c]) += f[c];
-      }
+      forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
   }
 
 
@@ -634,8 +659,13 @@ namespace MPM
     const Tensor<1, dim> g = time_stepping.gravity;
     unsigned int         k = 0;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        add_point_forces(point_properties[k], shape_functions[k], g, cell);
+      {
+        std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+          forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          add_point_forces(point_properties[k], shape_functions[k], g, forces);
+        add_to_nodes(cell, forces, nodal_force);
+      }
     nodal_force.compress(VectorOperation::add);
     nodal_force.update_ghost_values();
   }
@@ -710,17 +740,29 @@ namespace MPM
       point_relocation.can_locate_while_moving();
     if (remap_momentum)
       zero_touched_entries(nodal_momentum);
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+      {
+        // The cell's nodal values, read once for all its points (through
+        // the points' property pointers the compiler may not keep them in
+        // registers), and the remapped momentum summed over its points and
+        // added to the nodes once (see map_mass_and_momentum()).
+        std::array<Tensor<1, dim>, n_vertices> a_node, v_node, remapped;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              a_node[i][c] = nodal_acceleration.local_element(cell.dofs[i][c]);
+              v_node[i][c] = nodal_velocity_new.local_element(cell.dofs[i][c]);
+            }
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
         {
           const auto    &N = shape_functions[k].value;
           Tensor<1, dim> a, v_new;
-          for (unsigned int i = 0; i < N.size(); ++i)
+          for (unsigned int i = 0; i < n_vertices; ++i)
             for (unsigned int c = 0; c < dim; ++c)
               {
-                a[c] += N[i] * nodal_acceleration.local_element(cell.dofs[i][c]);
-                v_new[c] +=
-                  N[i] * nodal_velocity_new.local_element(cell.dofs[i][c]);
+                a[c] += N[i] * a_node[i][c];
+                v_new[c] += N[i] * v_node[i][c];
               }
           auto props = point->get_properties();
           for (unsigned int c = 0; c < dim; ++c)
@@ -739,10 +781,9 @@ namespace MPM
           if (remap_momentum)
             {
               const double m = props[Layout::mass];
-              for (unsigned int i = 0; i < N.size(); ++i)
+              for (unsigned int i = 0; i < n_vertices; ++i)
                 for (unsigned int c = 0; c < dim; ++c)
-                  nodal_momentum.local_element(cell.dofs[i][c]) +=
-                    N[i] * m * props[Layout::velocity + c];
+                  remapped[i][c] += N[i] * m * props[Layout::velocity + c];
             }
           const double speed2 =
             read_vector<dim>(&props[Layout::velocity]).norm_square();
@@ -762,6 +803,9 @@ namespace MPM
               first_bad_point = s.str();
             }
         }
+        if (remap_momentum)
+          add_to_nodes(cell, remapped, nodal_momentum);
+      }
     if (remap_momentum)
       {
         nodal_momentum.compress(VectorOperation::add);

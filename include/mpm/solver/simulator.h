@@ -256,14 +256,29 @@ namespace MPM
     map_mass_and_momentum(const bool with_forces);
 
     /**
-     * Add one point's forces to nodal_force: gravity and the divergence of
-     * its stress, with its shape functions @p sf in @p cell.
+     * Add one point's forces (gravity and the divergence of its stress,
+     * with its shape functions @p sf) to the sums @p forces over the
+     * vertices of its cell.
      */
     void
-    add_point_forces(const double                *props,
-                     const Q1ShapeFunctions<dim> &sf,
-                     const Tensor<1, dim>        &gravity,
-                     const ActiveCell            &cell);
+    add_point_forces(
+      const double                *props,
+      const Q1ShapeFunctions<dim> &sf,
+      const Tensor<1, dim>        &gravity,
+      std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+        &forces) const;
+
+    /**
+     * Add the per-vertex sums @p values of one cell's points to the
+     * nodal vector @p v (at each vertex, component c to the entry of
+     * component c).
+     */
+    void
+    add_to_nodes(
+      const ActiveCell &cell,
+      const std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+                  &values,
+      NodalVector &v) const;
 
     void
     compute_nodal_velocity(NodalVector &velocity_out);
