@@ -459,9 +459,9 @@ namespace MPM
           it->get_surrounding_cell();
         const auto points = particle_handler.particles_in_cell(cell);
         h_min             = std::min(h_min, grid.cell_size(cell));
-        ActiveCell active{static_cast<unsigned int>(
-                            particle_handler.n_particles_in_cell(cell)),
-                          local_dofs_of_cells[cell->active_cell_index()]};
+        // The number of points is counted below, in the loop over them
+        // (ParticleHandler::n_particles_in_cell() looks the cell up again).
+        ActiveCell active{0, local_dofs_of_cells[cell->active_cell_index()]};
         for (const auto &vertex_dofs : active.dofs)
           for (const unsigned int local : vertex_dofs)
             if (!dof_is_active[local])
@@ -471,7 +471,7 @@ namespace MPM
               }
         if constexpr (dim == 2)
           active.map = &grid.bilinear_map(cell);
-        active_cells.push_back(active);
+        const unsigned int first_point = k;
 
         if constexpr (dim == 2)
           {
@@ -493,6 +493,8 @@ namespace MPM
                                             point->get_reference_location());
               }
           }
+        active.n_points = k - first_point;
+        active_cells.push_back(active);
         it = points.end();
       }
     for (const unsigned int i : active_dofs)
