@@ -29,6 +29,47 @@ namespace MPM
     std::array<double, n_vertices>         value;
     std::array<Tensor<1, dim>, n_vertices> gradient;
 
+  private:
+    /**
+     * Reference gradients of N0 ... N3 at @p xi (2D).
+     */
+    static std::array<std::array<double, 2>, 4>
+    reference_gradients_2d(const Point<dim> &xi)
+    {
+      const double x = xi[0], y = xi[1];
+      const double ox = 1. - x, oy = 1. - y;
+      return {{{{-oy, -ox}}, {{oy, -x}}, {{-y, ox}}, {{y, x}}}};
+    }
+
+    /**
+     * Values at @p xi and gradients J^{-T} times the reference gradients,
+     * for the Jacobian @p j (2D). Written out in scalars: through Tensor,
+     * the inverse Jacobian was stored as a pair and read back as halves, a
+     * store-forwarding stall that was a third of this function's time in
+     * the flume.
+     */
+    void
+    set_2d(const Point<dim> &xi, const std::array<std::array<double, 2>, 2> &j)
+    {
+      const double x = xi[0], y = xi[1];
+      const double ox = 1. - x, oy = 1. - y;
+      value        = {{ox * oy, x * oy, ox * y, x * y}};
+      const auto g = reference_gradients_2d(xi);
+      const double inverse_determinant =
+        1.0 / (j[0][0] * j[1][1] - j[1][0] * j[0][1]);
+      // J^{-T}.
+      const double t00 = j[1][1] * inverse_determinant;
+      const double t01 = -j[1][0] * inverse_determinant;
+      const double t10 = -j[0][1] * inverse_determinant;
+      const double t11 = j[0][0] * inverse_determinant;
+      for (unsigned int i = 0; i < 4; ++i)
+        {
+          gradient[i][0] = t00 * g[i][0] + t01 * g[i][1];
+          gradient[i][1] = t10 * g[i][0] + t11 * g[i][1];
+        }
+    }
+
+  public:
     /**
      * Evaluate at reference point @p xi of the quadrilateral whose map
      * is @p map (2D). The Jacobian comes from the map's edge vectors,
@@ -41,24 +82,7 @@ namespace MPM
     reinit(const BilinearCellMap &map, const Point<dim> &xi)
     {
       if constexpr (dim == 2)
-        {
-          const double x = xi[0], y = xi[1];
-          const double ox = 1. - x, oy = 1. - y;
-          value = {{ox * oy, x * oy, ox * y, x * y}};
-          const double g[4][2] = {{-oy, -ox}, {oy, -x}, {-y, ox}, {y, x}};
-          const auto   j       = map.jacobian(xi);
-          const double inverse_determinant =
-            1.0 / (j[0][0] * j[1][1] - j[1][0] * j[0][1]);
-          const double t00 = j[1][1] * inverse_determinant;
-          const double t01 = -j[1][0] * inverse_determinant;
-          const double t10 = -j[0][1] * inverse_determinant;
-          const double t11 = j[0][0] * inverse_determinant;
-          for (unsigned int i = 0; i < 4; ++i)
-            {
-              gradient[i][0] = t00 * g[i][0] + t01 * g[i][1];
-              gradient[i][1] = t10 * g[i][0] + t11 * g[i][1];
-            }
-        }
+        set_2d(xi, map.jacobian(xi));
       else
         {
           (void)map;
@@ -76,33 +100,15 @@ namespace MPM
     {
       if constexpr (dim == 2)
         {
-          // Written out in scalars, with the same operations in the same
-          // order as the general code below (so the same bits): through
-          // Tensor, the inverse Jacobian was stored as a pair and read
-          // back as halves, a store-forwarding stall that was a third of
-          // this function's time in the flume.
-          const double x = xi[0], y = xi[1];
-          const double ox = 1. - x, oy = 1. - y;
-          value = {{ox * oy, x * oy, ox * y, x * y}};
-          // Reference gradients of N0 ... N3.
-          const double g[4][2] = {{-oy, -ox}, {oy, -x}, {-y, ox}, {y, x}};
-          double       j[2][2];
+          // The same operations in the same order as the general code
+          // below (so the same bits), in scalars (see set_2d()).
+          const auto g = reference_gradients_2d(xi);
+          std::array<std::array<double, 2>, 2> j;
           for (unsigned int a = 0; a < 2; ++a)
             for (unsigned int b = 0; b < 2; ++b)
               j[a][b] = vertices[0][a] * g[0][b] + vertices[1][a] * g[1][b] +
                         vertices[2][a] * g[2][b] + vertices[3][a] * g[3][b];
-          const double inverse_determinant =
-            1.0 / (j[0][0] * j[1][1] - j[1][0] * j[0][1]);
-          // J^{-T}.
-          const double t00 = j[1][1] * inverse_determinant;
-          const double t01 = -j[1][0] * inverse_determinant;
-          const double t10 = -j[0][1] * inverse_determinant;
-          const double t11 = j[0][0] * inverse_determinant;
-          for (unsigned int i = 0; i < 4; ++i)
-            {
-              gradient[i][0] = t00 * g[i][0] + t01 * g[i][1];
-              gradient[i][1] = t10 * g[i][0] + t11 * g[i][1];
-            }
+          set_2d(xi, j);
           return;
         }
       std::array<Tensor<1, dim>, n_vertices> reference_gradient;

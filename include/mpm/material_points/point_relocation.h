@@ -34,7 +34,11 @@ namespace MPM
    *     a vertex with the old cell (locate_point(): the lowest active cell
    *     index wins among the cells that contain it), then in the whole mesh;
    *  3. moves only those points (remove and insert in the ParticleHandler,
-   *     which stays the store of the points).
+   *     which stays the store of the points; without deal.II's recount of
+   *     all points unless one left the domain).
+   * relocate() does all three; with the closed form (2D) the
+   * grid-to-particle pass does step 1 point by point as it moves the
+   * points (locate_in_cell()) and relocate_leavers() the rest.
    * A point found in no cell (neither around its old cell nor by
    * GridTools::find_active_cell_around_point() in the whole mesh, which
    * every rank's triangulation covers) has left the domain: it is reported
