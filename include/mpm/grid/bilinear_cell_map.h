@@ -185,6 +185,9 @@ namespace MPM
       // independent of the division for t, so that the two divisions run
       // side by side instead of one after the other (this chain of
       // square root and divisions is most of the cost of the inverse map).
+      // inverse_general() forms the quotient unscaled, for both roots; the
+      // two can differ in the last bit, which matters only for a point
+      // within round-off of an edge, inside the tolerance either way.
       const Tensor<1, 2> e      = u * q + d * C;
       const Tensor<1, 2> rhs    = r * q - w * C;
       const double       e_norm = e * e;
