@@ -166,10 +166,21 @@ namespace MPM
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
              const typename Triangulation<dim>::active_cell_iterator &) {
-        const double mass =
-          particle->get_properties()[PropertyLayout<dim>::mass];
+        using Layout       = PropertyLayout<dim>;
+        const auto   props = particle->get_properties();
+        const double mass  = props[Layout::mass];
         ++n_lost_points;
         lost_mass += mass;
+        // The energy it takes away, so that the energy check compares the
+        // remaining points with what remains available to them.
+        const Material &material =
+          materials[static_cast<unsigned int>(props[Layout::material_id])];
+        lost_energy +=
+          0.5 * mass * read_vector<dim>(&props[Layout::velocity]).norm_square() +
+          props[Layout::volume] *
+            material.model->strain_energy_density(
+              read_symmetric_tensor(&props[Layout::stress])) -
+          mass * (time_stepping.gravity * particle->get_location());
         std::ostringstream s;
         s << "material point " << particle->get_id() << " (mass " << mass
           << " kg) left the mesh at (" << particle->get_location() << ")";
@@ -307,9 +318,12 @@ namespace MPM
     const types::particle_index removed_points =
       Utilities::MPI::sum(n_lost_points, mpi_communicator);
     const double removed_mass = Utilities::MPI::sum(lost_mass, mpi_communicator);
+    const double removed_energy =
+      Utilities::MPI::sum(lost_energy, mpi_communicator);
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
-    const unsigned int  format      = 1;
+    // 2: the removed points' energy appended (format 1 is still read).
+    const unsigned int  format      = 2;
     const unsigned int  space_dim   = dim;
     std::uint64_t       stats_bytes = 0;
     if (statistics_file.is_open())
@@ -330,7 +344,7 @@ namespace MPM
       ar << format << space_dim << n_points << n_cells << time << step
          << time_step << output_index << max_point_speed << removed_points
          << removed_mass << n_repartitions << stats_bytes << output_writer
-         << postprocessor_names << postprocessor_states;
+         << postprocessor_names << postprocessor_states << removed_energy;
     }
     return state.str();
   }
@@ -346,9 +360,10 @@ namespace MPM
     std::uint64_t n_points = 0, n_cells = 0;
     types::particle_index removed_points = 0;
     double                removed_mass   = 0;
+    double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format == 1 && space_dim == dim,
+    check_input((format == 1 || format == 2) && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -366,6 +381,8 @@ namespace MPM
     ar >> time >> step >> time_step >> output_index >> max_point_speed >>
       removed_points >> removed_mass >> n_repartitions >> statistics_length >>
       output_writer >> names >> postprocessor_states;
+    if (format >= 2)
+      ar >> removed_energy;
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
                            "postprocessors '" +
@@ -376,6 +393,7 @@ namespace MPM
     const bool is_root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     n_lost_points      = is_root ? removed_points : 0;
     lost_mass          = is_root ? removed_mass : 0;
+    lost_energy        = is_root ? removed_energy : 0;
     for (unsigned int i = 0; i < postprocessors.size(); ++i)
       {
         std::istringstream p_in(postprocessor_states[i]);
@@ -1031,6 +1049,7 @@ namespace MPM
     s.strain_energy  = Utilities::MPI::sum(s.strain_energy, mpi_communicator);
     s.gravitational_potential_energy =
       Utilities::MPI::sum(s.gravitational_potential_energy, mpi_communicator);
+    s.removed_energy = Utilities::MPI::sum(lost_energy, mpi_communicator);
     s.mean_speed =
       Utilities::MPI::sum(s.mean_speed, mpi_communicator) /
       std::max<double>(1, s.n_points);

@@ -57,9 +57,16 @@ namespace MPM
   std::string
   StabilityMonitor<dim>::check_energy(const GlobalStatistics<dim> &now) const
   {
+    // What the remaining points can have: the initial energy and the
+    // potential energy released, less what removed points took away
+    // ('Points leaving the mesh = remove'; without it a block that lost
+    // its lowest points, which had released the most, stopped as
+    // "energy is being created").
     const double available =
       initial_energy +
-      std::max(0., initial_potential_energy - now.gravitational_potential_energy);
+      std::max(0.,
+               initial_potential_energy - now.gravitational_potential_energy -
+                 now.removed_energy);
     // Friction, plasticity and damping only dissipate, so kinetic plus
     // strain energy stays below what is available, up to MPM's energy
     // errors (percents). The strain energy counts as well as the kinetic
@@ -75,8 +82,10 @@ namespace MPM
       << now.strain_energy
       << " J exceeds 'Stability/Energy growth factor' = " << growth_factor
       << " times the energy the scene can have released, " << reference
-      << " J (initial kinetic + strain energy + potential energy released): "
-         "energy is being created.";
+      << " J (initial kinetic + strain energy + potential energy released"
+      << (now.removed_energy != 0 ? ", less the energy of the removed points" :
+                                    "")
+      << "): energy is being created.";
     return s.str();
   }
 

@@ -380,6 +380,9 @@ namespace MPM
     /// = remove), and their mass.
     types::particle_index n_lost_points = 0;
     double                lost_mass     = 0;
+    /// Energy the removed points carried (this rank's share; see
+    /// GlobalStatistics::removed_energy).
+    double                lost_energy   = 0;
     std::vector<std::string> lost_point_descriptions;
 
     std::ofstream      statistics_file;

@@ -27,6 +27,9 @@ namespace MPM
     double                kinetic_energy = 0;
     double                strain_energy  = 0;
     double                gravitational_potential_energy = 0;
+    /// Kinetic + strain + potential energy that the points removed so far
+    /// ('Points leaving the mesh = remove') carried when they left.
+    double                removed_energy = 0;
     double                mean_speed     = 0;
     double                max_speed      = 0;
     Tensor<1, dim>        centre_of_mass;
