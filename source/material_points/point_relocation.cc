@@ -85,25 +85,15 @@ namespace MPM
       {
         const CellIterator cell   = it->get_surrounding_cell();
         const auto         points = particle_handler.particles_in_cell(cell);
-        if constexpr (dim == 2)
-          if (inverse_type == InverseMappingType::closed_form)
-            {
-              // The closed form inlined with the cell's precomputed part:
-              // this loop is the whole cost of locating the points.
-              const BilinearCellMap &map = grid->bilinear_map(cell);
-              for (auto point = points.begin(); point != points.end(); ++point)
-                {
-                  Point<2> xi;
-                  if (map.contains(point->get_location(), xi))
-                    point->set_reference_location(xi);
-                  else
-                    leavers_of_this_step.push_back(point);
-                }
-              stats.n_points_mapped +=
-                particle_handler.n_particles_in_cell(cell);
-              it = points.end();
-              continue;
-            }
+        if (can_locate_while_moving())
+          {
+            // The same in-cell test as the grid-to-particle pass makes.
+            const BilinearCellMap &map = grid->bilinear_map(cell);
+            for (auto point = points.begin(); point != points.end(); ++point)
+              locate_in_cell(map, point, point->get_location());
+            it = points.end();
+            continue;
+          }
         const auto &vertices = grid->cell_vertices(cell);
         for (auto point = points.begin(); point != points.end(); ++point)
           {
@@ -143,8 +133,7 @@ namespace MPM
       CellIterator          cell;
       unsigned int          first_property;
     };
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-                        lost;
+    std::vector<ParticleIterator> lost;
     std::vector<Move>   moves;
     // Per destination rank: the points that moved into its cells.
     std::map<unsigned int, std::vector<double>> sends;
