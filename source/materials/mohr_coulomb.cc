@@ -23,6 +23,22 @@ namespace MPM
        */
       constexpr double relative_tolerance = 1e-10;
 
+      /**
+       * sqrt(2/3 |dev(ds)|^2) of principal values @p ds. Times 1 / (2 G)
+       * it is the equivalent plastic shear strain of a stress change ds
+       * returned by the elastic law: the deviator of
+       * ((1 + nu) ds - nu tr(ds) I) / E is dev(ds) / (2 G).
+       */
+      double
+      deviatoric_norm(const std::array<double, 3> &ds)
+      {
+        const double mean = (ds[0] + ds[1] + ds[2]) * (1. / 3.);
+        double       e2   = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          e2 += (ds[i] - mean) * (ds[i] - mean);
+        return std::sqrt(2. / 3. * e2);
+      }
+
       std::string
       name_of(const std::string &entry)
       {
@@ -177,13 +193,8 @@ namespace MPM
         for (unsigned int i = 0; i < 3; ++i)
           return_direction[s][i] =
             elasticity.lambda * tr + 2 * elasticity.shear_modulus * flow[s][i];
-        const auto  &r    = return_direction[s];
-        const double mean = (r[0] + r[1] + r[2]) * (1. / 3.);
-        double       e2   = 0;
-        for (unsigned int i = 0; i < 3; ++i)
-          e2 += (r[i] - mean) * (r[i] - mean);
         shear_strain_per_multiplier[s] =
-          std::sqrt(2. / 3. * e2) * inverse_two_shear_modulus;
+          deviatoric_norm(return_direction[s]) * inverse_two_shear_modulus;
       }
 
       // Candidate sets of at most three surfaces (three independent planes
@@ -311,8 +322,13 @@ namespace MPM
       std::array<double, 3> &s,
       double                &plastic_shear_increment) const
     {
-      plastic_shear_increment = -1;
+      plastic_shear_increment = 0;
       const std::array<double, 3> trial = s;
+      // The plastic shear strain of a stress change from the trial stress.
+      const auto shear_strain_to = [&](const std::array<double, 3> &x) {
+        return deviatoric_norm({{trial[0] - x[0], trial[1] - x[1], trial[2] - x[2]}}) *
+               inverse_two_shear_modulus;
+      };
 
       const double scale = std::max(
         {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), bound[0], bound[3]});
@@ -347,10 +363,10 @@ namespace MPM
         if (found)
           {
             s = x;
-            if (set.m == 1)
-              plastic_shear_increment =
-                std::abs(dgamma) *
-                shear_strain_per_multiplier[set.active[0]];
+            plastic_shear_increment =
+              set.m == 1 ? std::abs(dgamma) *
+                             shear_strain_per_multiplier[set.active[0]] :
+                           shear_strain_to(x);
             return set.bits;
           }
       }
@@ -359,6 +375,7 @@ namespace MPM
       // counts it over random trial stresses); the apex of the admissible
       // set is the safe answer.
       s = {{tension_cutoff, tension_cutoff, tension_cutoff}};
+      plastic_shear_increment = shear_strain_to(s);
       return fallback;
     }
 
@@ -368,27 +385,6 @@ namespace MPM
     {
       double plastic_shear_increment;
       return return_principal_inline(s, plastic_shear_increment);
-    }
-
-
-    inline DEAL_II_ALWAYS_INLINE void
-    MohrCoulomb::accumulate_plastic_strain(const std::array<double, 3> &s_trial,
-                                           const std::array<double, 3> &s,
-                                           const ArrayView<double> &state) const
-    {
-      // Plastic strain increment C (s_trial - s) in the principal frame,
-      // and its deviatoric norm.
-      std::array<double, 3> ds;
-      for (unsigned int i = 0; i < 3; ++i)
-        ds[i] = s_trial[i] - s[i];
-      // Only the deviatoric part counts, and the deviator of
-      // ((1 + nu) ds - nu tr(ds) I) / E is (1 + nu) / E dev(ds) = dev(ds) /
-      // (2 G): no division per point.
-      const double mean = (ds[0] + ds[1] + ds[2]) * (1. / 3.);
-      double       e2   = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        e2 += (ds[i] - mean) * (ds[i] - mean);
-      state[0] += std::sqrt(2. / 3. * e2) * inverse_two_shear_modulus;
     }
 
 
@@ -435,17 +431,13 @@ namespace MPM
             s = {{major, szz, minor}};
           else
             s = {{major, minor, szz}};
-          const std::array<double, 3> s_trial = s;
-          double                      plastic_shear_increment;
+          double plastic_shear_increment;
           if (return_principal_inline(s, plastic_shear_increment) == 0)
             {
               stress = trial;
               return;
             }
-          if (plastic_shear_increment >= 0)
-            state[0] += plastic_shear_increment;
-          else
-            accumulate_plastic_strain(s_trial, s, state);
+          state[0] += plastic_shear_increment;
           const double new_zz    = s[z_position];
           const double new_major = s[z_position == 0 ? 1 : 0];
           const double new_minor = s[z_position == 2 ? 1 : 2];
@@ -485,7 +477,6 @@ namespace MPM
                      SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
 #endif
       s = {{eigen[0].first, eigen[1].first, eigen[2].first}};
-      const std::array<double, 3> s_trial = s;
 
       double plastic_shear_increment;
       if (return_principal_inline(s, plastic_shear_increment) == 0)
@@ -498,10 +489,7 @@ namespace MPM
       for (unsigned int i = 0; i < 3; ++i)
         stress +=
           s[i] * symmetrize(outer_product(eigen[i].second, eigen[i].second));
-      if (plastic_shear_increment >= 0)
-        state[0] += plastic_shear_increment;
-      else
-        accumulate_plastic_strain(s_trial, s, state);
+      state[0] += plastic_shear_increment;
     }
 
 

@@ -118,10 +118,10 @@ namespace MPM
        * memory, they were written one by one and read back in pairs, and
        * the store-forwarding stalls cost more than the arithmetic.
        *
-       * For a return to one plane, @p plastic_shear_increment is the
-       * increment of the accumulated plastic shear strain, |dgamma| times
-       * the plane's shear_strain_per_multiplier; otherwise it is -1 and
-       * the caller computes it from the stress change.
+       * @p plastic_shear_increment is the increment of the accumulated
+       * plastic shear strain (0 for an elastic step): for a return to one
+       * plane |dgamma| times the plane's shear_strain_per_multiplier,
+       * otherwise from the stress change.
        */
       inline unsigned int
       return_principal_inline(std::array<double, 3> &s,
@@ -155,15 +155,6 @@ namespace MPM
                         const double                 multiplier_tol,
                         std::array<double, 3>       &x,
                         double &first_multiplier) const;
-
-      /**
-       * Add the deviatoric norm of the plastic strain increment
-       * C^-1 (s_trial - s) (principal values) to the state.
-       */
-      inline void
-      accumulate_plastic_strain(const std::array<double, 3> &s_trial,
-                                const std::array<double, 3> &s,
-                                const ArrayView<double>     &state) const;
 
       IsotropicElasticity elasticity;
       double friction_angle = 0; // radians
@@ -205,8 +196,8 @@ namespace MPM
       /**
        * For a return to plane k alone, the plastic shear strain per unit
        * multiplier: the stress change is dgamma r_k, so the increment
-       * sqrt(2/3 |dev(s_trial - s)|^2) / (2 G) of
-       * accumulate_plastic_strain() is |dgamma| times this constant. Saves
+       * sqrt(2/3 |dev(s_trial - s)|^2) / (2 G) is |dgamma| times this
+       * constant. Saves
        * the square root at the end of most returns (with it, the
        * accumulation of a state that nothing else reads was a fifth of
        * the model's time in the flume).
