@@ -166,21 +166,14 @@ namespace MPM
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
              const typename Triangulation<dim>::active_cell_iterator &) {
-        using Layout       = PropertyLayout<dim>;
-        const auto   props = particle->get_properties();
-        const double mass  = props[Layout::mass];
+        const double *props = particle->get_properties().data();
+        const double  mass  = props[PropertyLayout<dim>::mass];
         ++n_lost_points;
         lost_mass += mass;
         // The energy it takes away, so that the energy check compares the
         // remaining points with what remains available to them.
-        const Material &material =
-          materials[static_cast<unsigned int>(props[Layout::material_id])];
-        lost_energy +=
-          0.5 * mass * read_vector<dim>(&props[Layout::velocity]).norm_square() +
-          props[Layout::volume] *
-            material.model->strain_energy_density(
-              read_symmetric_tensor(&props[Layout::stress])) -
-          mass * (time_stepping.gravity * particle->get_location());
+        const auto energy = energy_of_point(props, particle->get_location());
+        lost_energy += energy[0] + energy[1] + energy[2];
         std::ostringstream s;
         s << "material point " << particle->get_id() << " (mass " << mass
           << " kg) left the mesh at (" << particle->get_location() << ")";
@@ -491,26 +484,20 @@ namespace MPM
           active.map = &grid.bilinear_map(cell);
         const unsigned int first_point = k;
 
+        // The cell's geometry as the shape functions take it: its bilinear
+        // map in 2D, its vertices in 3D.
+        const auto fill = [&](const auto &geometry) {
+          for (auto point = points.begin(); point != points.end(); ++point)
+            {
+              point_properties[k] = point->get_properties().data();
+              shape_functions[k++].reinit(geometry,
+                                          point->get_reference_location());
+            }
+        };
         if constexpr (dim == 2)
-          {
-            const BilinearCellMap &map = *active.map;
-            for (auto point = points.begin(); point != points.end(); ++point)
-              {
-                point_properties[k] = point->get_properties().data();
-                shape_functions[k++].reinit(map,
-                                            point->get_reference_location());
-              }
-          }
+          fill(*active.map);
         else
-          {
-            const auto &vertices = grid.cell_vertices(cell);
-            for (auto point = points.begin(); point != points.end(); ++point)
-              {
-                point_properties[k] = point->get_properties().data();
-                shape_functions[k++].reinit(vertices,
-                                            point->get_reference_location());
-              }
-          }
+          fill(grid.cell_vertices(cell));
         active.n_points = k - first_point;
         active_cells.push_back(active);
         it = points.end();
@@ -1026,17 +1013,13 @@ namespace MPM
         const auto           props = point.get_properties();
         const double         m     = props[Layout::mass];
         const Tensor<1, dim> v     = read_vector<dim>(&props[Layout::velocity]);
-        const Material      &material =
-          materials[static_cast<unsigned int>(props[Layout::material_id])];
         s.mass += m;
         s.volume += props[Layout::volume];
         s.momentum += m * v;
-        s.kinetic_energy += 0.5 * m * v.norm_square();
-        s.strain_energy +=
-          props[Layout::volume] * material.model->strain_energy_density(
-                                    read_symmetric_tensor(&props[Layout::stress]));
-        s.gravitational_potential_energy -=
-          m * (time_stepping.gravity * point.get_location());
+        const auto energy = energy_of_point(props.data(), point.get_location());
+        s.kinetic_energy += energy[0];
+        s.strain_energy += energy[1];
+        s.gravitational_potential_energy += energy[2];
         s.mean_speed += v.norm();
         s.max_speed = std::max(s.max_speed, v.norm());
         s.centre_of_mass += m * point.get_location();
@@ -1058,6 +1041,22 @@ namespace MPM
                        (s.mass > 0 ? s.mass : 1);
     s.mean_velocity = s.momentum / (s.mass > 0 ? s.mass : 1);
     return s;
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  Simulator<dim>::energy_of_point(const double *props, const Point<dim> &x) const
+  {
+    using Layout             = PropertyLayout<dim>;
+    const double      m      = props[Layout::mass];
+    const Material   &material =
+      materials[static_cast<unsigned int>(props[Layout::material_id])];
+    return {{0.5 * m * read_vector<dim>(&props[Layout::velocity]).norm_square(),
+             props[Layout::volume] *
+               material.model->strain_energy_density(
+                 read_symmetric_tensor(&props[Layout::stress])),
+             -m * (time_stepping.gravity * x)}};
   }
 
 

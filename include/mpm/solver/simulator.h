@@ -154,6 +154,14 @@ namespace MPM
      */
     GlobalStatistics<dim>
     compute_statistics() const;
+
+    /**
+     * Kinetic, strain and gravitational potential energy of the point with
+     * properties @p props at @p x: the terms of compute_statistics()'s
+     * sums, and what a removed point takes away.
+     */
+    std::array<double, 3>
+    energy_of_point(const double *props, const Point<dim> &x) const;
     /** @} */
 
   private:
