@@ -65,7 +65,7 @@ vibrating_bar() {
   for v in 1 2 3 4; do run vibrating_bar "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/bar/Points per cell=$v"; done
   for v in 0.1 0.2 0.4 0.8; do run vibrating_bar "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
   for v in USF USL MUSL; do run vibrating_bar "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
-  for v in 0 0.5 0.9 1; do run vibrating_bar "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+  for v in 0 0.5 0.9 1; do run vibrating_bar "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Transfer/FLIP fraction=$v"; done
 }
 
 self_weight_column() {
@@ -80,7 +80,7 @@ self_weight_column() {
   for v in 1 2 3 4; do run self_weight_column "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/column/Points per cell=$v"; done
   for v in 0.1 0.25 0.5 0.9; do run self_weight_column "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
   for v in USF MUSL; do run self_weight_column "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
-  for v in 0 1; do run self_weight_column "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+  for v in 0 1; do run self_weight_column "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Transfer/FLIP fraction=$v"; done
 }
 
 sliding_block() {
@@ -90,7 +90,7 @@ sliding_block() {
   for v in 1 2 3 4 6; do run sliding_block "points per cell" "$v" "$prm" "$e" "$m" --set "Material points/block/Points per cell=$v"; done
   for v in 0.1 0.25 0.5 0.9; do run sliding_block "CFL number" "$v" "$prm" "$e" "$m" --set "Time stepping/CFL number=$v"; done
   for v in USF USL MUSL; do run sliding_block "update scheme" "$v" "$prm" "$e" "$m" --set "Time stepping/Update scheme=$v"; done
-  for v in 0 0.5 1; do run sliding_block "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Time stepping/FLIP fraction=$v"; done
+  for v in 0 0.5 1; do run sliding_block "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Transfer/FLIP fraction=$v"; done
 }
 
 flume() {

@@ -40,7 +40,7 @@ run() {
     --set "Material points/block/Box=0, 0 : 1, 1" \
     --set "Materials/block/Model=$model" \
     --set "Time stepping/Update scheme=$scheme" \
-    --set "Time stepping/FLIP fraction=$flip" \
+    --set "Transfer/FLIP fraction=$flip" \
     --set "Time stepping/End time=$end_time" \
     --set "Output/Directory=$out/$name" > "$out/$name.log"
   awk -v model="$model" -v points="$points" -v cells="$(( mesh_cells * mesh_cells ))" \

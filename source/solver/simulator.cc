@@ -13,6 +13,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/solver/simulator.h>
+#include <mpm/transfer/velocity_transfer.h>
 
 #include <chrono>
 #include <iomanip>
@@ -72,6 +73,7 @@ namespace MPM
     PointRelocation<dim>::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
+    VelocityTransfer<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
     LoadBalancing<dim>::declare_parameters(prm);
     Checkpointing<dim>::declare_parameters(prm);
@@ -117,6 +119,7 @@ namespace MPM
     point_relocation.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
+    transfer.parse_parameters(prm);
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
     stability_monitor.parse_parameters(prm);
@@ -143,6 +146,8 @@ namespace MPM
       names.push_back(materials.size() == 1 && i < model_names.size() ?
                         model_names[i] :
                         "state_" + std::to_string(i));
+    for (const auto &name : transfer.point_property_names())
+      names.push_back(name);
     return names;
   }
 
@@ -158,10 +163,12 @@ namespace MPM
 
     setup_nodal_fields();
 
+    // The material state, then the transfer's own slots (APIC's C_p).
+    transfer_slot =
+      PropertyLayout<dim>::state + materials.max_n_state_variables();
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
-                                PropertyLayout<dim>::state +
-                                  materials.max_n_state_variables());
+                                transfer_slot + transfer.n_point_properties());
     load_balancing.connect(grid.triangulation, particle_handler);
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -258,7 +265,10 @@ namespace MPM
                            &nodal_force,
                            &nodal_velocity,
                            &nodal_velocity_new,
-                           &nodal_acceleration})
+                           &nodal_acceleration,
+                           &filtered_velocity,
+                           &round_trip_velocity,
+                           &round_trip_momentum})
       v->reinit(partitioner);
     mark_locally_computed_fields();
     // The nodal-vector entries of every locally owned cell's vertices,
@@ -472,7 +482,9 @@ namespace MPM
         h_min             = std::min(h_min, grid.cell_size(cell));
         // The number of points is counted below, in the loop over them
         // (ParticleHandler::n_particles_in_cell() looks the cell up again).
-        ActiveCell active{0, local_dofs_of_cells[cell->active_cell_index()]};
+        ActiveCell active{0,
+                          local_dofs_of_cells[cell->active_cell_index()],
+                          &grid.cell_vertices(cell)};
         for (const auto &vertex_dofs : active.dofs)
           for (const unsigned int local : vertex_dofs)
             if (!dof_is_active[local])
@@ -519,6 +531,10 @@ namespace MPM
                            &nodal_velocity_new,
                            &nodal_acceleration})
       zero_touched_entries(*v);
+    if (transfer.scheme() == TransferScheme::xpic)
+      for (NodalVector *v :
+           {&filtered_velocity, &round_trip_velocity, &round_trip_momentum})
+        zero_touched_entries(*v);
     mark_locally_computed_fields();
   }
 
@@ -548,8 +564,11 @@ namespace MPM
     // Velocity and acceleration are computed by every rank for all nodes
     // its points touch, ghosts included, from the summed mass, momentum and
     // force: their ghost entries are valid without an exchange.
-    for (const NodalVector *v :
-         {&nodal_velocity, &nodal_velocity_new, &nodal_acceleration})
+    for (const NodalVector *v : {&nodal_velocity,
+                                 &nodal_velocity_new,
+                                 &nodal_acceleration,
+                                 &filtered_velocity,
+                                 &round_trip_velocity})
       v->set_ghost_state(true);
   }
 
@@ -562,6 +581,7 @@ namespace MPM
     using Layout           = PropertyLayout<dim>;
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     const Tensor<1, dim>   g          = time_stepping.gravity;
+    const bool affine = transfer.scheme() == TransferScheme::apic;
     unsigned int           k          = 0;
     for (const auto &cell : active_cells)
       {
@@ -575,15 +595,34 @@ namespace MPM
             const double  m     = props[Layout::mass];
             const auto    v     = read_vector<dim>(&props[Layout::velocity]);
             const auto   &sf    = shape_functions[k];
-            for (unsigned int i = 0; i < n_vertices; ++i)
+            if (affine)
               {
-                const double mi = sf.value[i] * m;
-                for (unsigned int c = 0; c < dim; ++c)
+                // APIC: each vertex receives the point's affine field
+                // there, v_p + C_p (x_i - x_p).
+                const auto dx = vertex_offsets(cell, sf);
+                const auto C =
+                  transfer.affine_matrix(sf, dx, props + transfer_slot);
+                for (unsigned int i = 0; i < n_vertices; ++i)
                   {
-                    mass[i][c] += mi;
-                    momentum[i][c] += mi * v[c];
+                    const double mi = sf.value[i] * m;
+                    const auto   vi = v + C * dx[i];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        mass[i][c] += mi;
+                        momentum[i][c] += mi * vi[c];
+                      }
                   }
               }
+            else
+              for (unsigned int i = 0; i < n_vertices; ++i)
+                {
+                  const double mi = sf.value[i] * m;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    {
+                      mass[i][c] += mi;
+                      momentum[i][c] += mi * v[c];
+                    }
+                }
             if (with_forces)
               add_point_forces(props, sf, g, forces);
           }
@@ -615,6 +654,86 @@ namespace MPM
     for (unsigned int i = 0; i < GeometryInfo<dim>::vertices_per_cell; ++i)
       for (unsigned int c = 0; c < dim; ++c)
         v.local_element(cell.dofs[i][c]) += values[i][c];
+  }
+
+
+  template <int dim>
+  inline std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+  Simulator<dim>::vertex_offsets(const ActiveCell            &cell,
+                                 const Q1ShapeFunctions<dim> &sf) const
+  {
+    // x_p = sum_j N_j x_j (the isoparametric map), so x_i - x_p needs no
+    // point location; relative to vertex 0 to avoid cancellation far from
+    // the origin.
+    const auto    &x = *cell.vertices;
+    Tensor<1, dim> xp;
+    for (unsigned int j = 1; j < x.size(); ++j)
+      xp += sf.value[j] * (x[j] - x[0]);
+    std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> dx;
+    for (unsigned int i = 0; i < x.size(); ++i)
+      dx[i] = (x[i] - x[0]) - xp;
+    return dx;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::filter_brought_velocity()
+  {
+    TimerOutput::Scope t(timer, "transfer filter");
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    using Layout                      = PropertyLayout<dim>;
+    const auto coefficients           = transfer.filter_coefficients();
+    // u_1 = the constrained brought velocity (compute_nodal_velocity()).
+    for (const unsigned int i : active_dofs)
+      {
+        const double u                     = nodal_velocity.local_element(i);
+        round_trip_velocity.local_element(i) = u;
+        filtered_velocity.local_element(i)   = coefficients[0] * u;
+      }
+    for (unsigned int k = 1; k < coefficients.size(); ++k)
+      {
+        // u_{k+1} = P S S+ u_k: interpolate to the points, project back
+        // with their masses, constrain.
+        zero_touched_entries(round_trip_momentum);
+        unsigned int p = 0;
+        for (const auto &cell : active_cells)
+          {
+            std::array<Tensor<1, dim>, n_vertices> u_node, sums;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              for (unsigned int c = 0; c < dim; ++c)
+                u_node[i][c] =
+                  round_trip_velocity.local_element(cell.dofs[i][c]);
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++p)
+              {
+                const auto    &N = shape_functions[p].value;
+                Tensor<1, dim> v;
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  v += N[i] * u_node[i];
+                v *= point_properties[p][Layout::mass];
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  sums[i] += N[i] * v;
+              }
+            add_to_nodes(cell, sums, round_trip_momentum);
+          }
+        round_trip_momentum.compress(VectorOperation::add);
+        round_trip_momentum.update_ghost_values();
+        for (const unsigned int i : active_dofs)
+          {
+            const double m = nodal_mass.local_element(i);
+            round_trip_velocity.local_element(i) =
+              m > 0 ? round_trip_momentum.local_element(i) / m : 0.;
+          }
+        boundary_conditions.project_velocity(round_trip_velocity);
+        for (const unsigned int i : active_dofs)
+          filtered_velocity.local_element(i) +=
+            coefficients[k] * round_trip_velocity.local_element(i);
+      }
+    // The nodal update starts from the brought velocity p / m: it is now
+    // the filtered one, so friction and the walls act on it.
+    for (const unsigned int i : active_dofs)
+      nodal_momentum.local_element(i) =
+        nodal_mass.local_element(i) * filtered_velocity.local_element(i);
   }
 
 
@@ -738,7 +857,8 @@ namespace MPM
     TimerOutput::Scope t(timer, "grid to particle");
     using Layout        = PropertyLayout<dim>;
     const double dt     = time_step;
-    const double flip   = time_stepping.flip_fraction;
+    const double flip   = transfer.flip_fraction();
+    const bool   affine = transfer.scheme() == TransferScheme::apic;
     double       v_max2 = 0;
     auto         point  = particle_handler.begin();
     unsigned int k      = 0;
@@ -777,6 +897,19 @@ namespace MPM
               double &v = props[Layout::velocity + c];
               v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
             }
+          // APIC: the affine part from the same end-of-step grid velocity,
+          // at the point's position before the move (where its shape
+          // functions were evaluated).
+          // APIC: with MUSL the affine matrix is set by the stress update
+          // (the gradient of the remapped velocity) and the remap below is
+          // PIC's; with USF and USL it is B D^{-1} of the end-of-step grid
+          // velocity (doc/transfers.md: exact, but unstable at CFL >= 0.1).
+          if (affine && !remap_momentum)
+            VelocityTransfer<dim>::update_affine(shape_functions[k],
+                                                 vertex_offsets(cell,
+                                                                shape_functions[k]),
+                                                 v_node,
+                                                 &props[transfer_slot]);
           // As one Tensor expression: built component by component, the
           // new position was stored as two scalars and read back as one
           // 16-byte value for set_location(), a store-forwarding stall
@@ -788,9 +921,10 @@ namespace MPM
           if (remap_momentum)
             {
               const double m = props[Layout::mass];
+              const auto   v = read_vector<dim>(&props[Layout::velocity]);
               for (unsigned int i = 0; i < n_vertices; ++i)
                 for (unsigned int c = 0; c < dim; ++c)
-                  remapped[i][c] += N[i] * m * props[Layout::velocity + c];
+                  remapped[i][c] += N[i] * m * v[c];
             }
           const double speed2 =
             read_vector<dim>(&props[Layout::velocity]).norm_square();
@@ -891,12 +1025,13 @@ namespace MPM
 
   template <int dim>
   void
-  Simulator<dim>::update_stress(const NodalVector &velocity)
+  Simulator<dim>::update_stress(const NodalVector &velocity,
+                                const bool         set_affine)
   {
     TimerOutput::Scope t(timer, "stress update");
     using Layout    = PropertyLayout<dim>;
     const double       dt           = time_step;
-    const unsigned int n_properties = particle_handler.n_properties_per_particle();
+    const unsigned int n_state      = materials.max_n_state_variables();
     unsigned int       k            = 0;
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
@@ -923,12 +1058,18 @@ namespace MPM
           material.model->update_stress(
             strain_increment,
             stress,
-            ArrayView<double>(props + Layout::state,
-                              n_properties - Layout::state));
+            ArrayView<double>(props + Layout::state, n_state));
           write_symmetric_tensor(stress, &props[Layout::stress]);
           write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
                                    strain_increment,
                                  &props[Layout::strain]);
+          // MUSL with APIC: the affine matrix is this velocity gradient
+          // (see VelocityTransfer::store_affine()).
+          if (set_affine)
+            VelocityTransfer<dim>::store_affine(sf,
+                                                vertex_offsets(cell, sf),
+                                                grad_v,
+                                                props + transfer_slot);
           // Volume follows the determinant of the incremental deformation
           // gradient I + dt grad v.
           props[Layout::volume] *=
@@ -984,6 +1125,8 @@ namespace MPM
         update_stress(nodal_velocity);
         map_forces();
       }
+    if (transfer.scheme() == TransferScheme::xpic && transfer.xpic_order() > 1)
+      filter_brought_velocity();
     update_nodal_kinematics();
     update_points_from_grid(scheme == UpdateScheme::musl);
     if (scheme == UpdateScheme::usl)
@@ -991,7 +1134,8 @@ namespace MPM
     else if (scheme == UpdateScheme::musl)
       {
         compute_nodal_velocity(nodal_velocity_new);
-        update_stress(nodal_velocity_new);
+        update_stress(nodal_velocity_new,
+                      transfer.scheme() == TransferScheme::apic);
       }
     time += time_step;
     ++step;

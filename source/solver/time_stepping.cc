@@ -43,12 +43,6 @@ namespace MPM
                         "When the stress is updated: USF (Update Stress "
                         "First, before the nodal momentum update), USL "
                         "(Update Stress Last), MUSL (Modified USL).");
-      prm.declare_entry("FLIP fraction",
-                        "1",
-                        Patterns::Double(0, 1),
-                        "Blend of the point velocity update: 1 = FLIP (add "
-                        "the interpolated nodal acceleration), 0 = PIC "
-                        "(take the interpolated nodal velocity).");
       prm.declare_entry("Local damping",
                         "0",
                         Patterns::Double(0, 1),
@@ -81,7 +75,6 @@ namespace MPM
       scheme = s == "USF" ? UpdateScheme::usf :
                s == "USL" ? UpdateScheme::usl :
                             UpdateScheme::musl;
-      flip_fraction = prm.get_double("FLIP fraction");
       local_damping = prm.get_double("Local damping");
       const auto g  = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Gravity")));

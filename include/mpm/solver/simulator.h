@@ -21,6 +21,7 @@
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/time_stepping.h>
+#include <mpm/transfer/velocity_transfer.h>
 
 #include <fstream>
 #include <memory>
@@ -175,6 +176,9 @@ namespace MPM
       unsigned int                                  n_points;
       std::array<std::array<unsigned int, dim>,
                  GeometryInfo<dim>::vertices_per_cell> dofs;
+      /// The cell's vertices (BackgroundGrid::cell_vertices()).
+      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
+        *vertices = nullptr;
       /// The cell's bilinear map (2D; nullptr in 3D), with which the
       /// grid-to-particle pass locates the points it moves.
       const BilinearCellMap *map = nullptr;
@@ -291,6 +295,24 @@ namespace MPM
     void
     compute_nodal_velocity(NodalVector &velocity_out);
 
+    /**
+     * x_i - x_p for the vertices of @p cell and the point whose shape
+     * functions are @p sf (APIC's affine transfer).
+     */
+    std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+    vertex_offsets(const ActiveCell &cell, const Q1ShapeFunctions<dim> &sf) const;
+
+    /**
+     * XPIC(m): replace the brought nodal velocity (nodal_momentum / mass)
+     * by sum_k c_k (P S S+)^{k-1} u, u the constrained brought velocity,
+     * S+ the interpolation to the points, S their mass-weighted projection
+     * back, P the wall constraints (VelocityTransfer::filter_coefficients()).
+     * Each order costs one pass over the points that reads only their
+     * masses and shape functions.
+     */
+    void
+    filter_brought_velocity();
+
     void
     map_forces();
 
@@ -307,8 +329,14 @@ namespace MPM
     void
     update_points_from_grid(const bool remap_momentum);
 
+    /**
+     * Strain increment, stress and volume of every point from the velocity
+     * gradient of @p nodal_velocity; with @p set_affine that gradient also
+     * becomes the points' APIC matrix (MUSL).
+     */
     void
-    update_stress(const NodalVector &nodal_velocity);
+    update_stress(const NodalVector &nodal_velocity,
+                  const bool         set_affine = false);
 
     void
     relocate_points();
@@ -330,6 +358,9 @@ namespace MPM
     PointRelocation<dim>            point_relocation;
     BoundaryConditions<dim>         boundary_conditions;
     TimeSteppingParameters<dim>     time_stepping;
+    VelocityTransfer<dim>           transfer;
+    /// The first property slot of the transfer's own point data.
+    unsigned int                    transfer_slot = 0;
     OutputWriter<dim>               output_writer;
     LoadBalancing<dim>              load_balancing;
     StabilityMonitor<dim>           stability_monitor;
@@ -352,6 +383,10 @@ namespace MPM
     /// Constrained nodal velocity at the end of the step.
     NodalVector nodal_velocity_new;
     NodalVector nodal_acceleration;
+    /// XPIC's filtered velocity and the round trip's iterate and sums.
+    NodalVector filtered_velocity;
+    NodalVector round_trip_velocity;
+    NodalVector round_trip_momentum;
 
     /**
      * The local indices into the nodal vectors of each locally owned

@@ -43,7 +43,6 @@ namespace MPM
     double         cfl_number      = 0.5;
     double         maximum_time_step = 1e100;
     UpdateScheme   scheme         = UpdateScheme::usf;
-    double         flip_fraction  = 1;
     double         local_damping  = 0;
     Tensor<1, dim> gravity;
   };

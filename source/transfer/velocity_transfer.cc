@@ -1,0 +1,102 @@
+#include <mpm/base/input_error.h>
+#include <mpm/transfer/velocity_transfer.h>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  VelocityTransfer<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Transfer");
+    {
+      prm.declare_entry(
+        "Scheme",
+        "flip/pic blend",
+        Patterns::Selection("flip/pic blend|xpic|apic"),
+        "How point velocities go to the grid and back (doc/transfers.md "
+        "compares them). 'flip/pic blend': v_p <- theta (v_p + dt S+ a) + "
+        "(1 - theta) S+ v with theta = 'FLIP fraction' (0 = PIC: strongly "
+        "dissipative; 1 = FLIP: noisy). 'apic': affine particle-in-cell "
+        "(Jiang et al. 2015): points carry an affine velocity field that "
+        "particle-to-grid keeps exactly; with MUSL its matrix is the "
+        "velocity gradient of the MUSL remap (stable), with USF and USL "
+        "it is fitted to the end-of-step grid velocity (exact, but "
+        "unstable on bilinear cells above CFL 0.05). 'xpic': XPIC(m) "
+        "(Hammerquist and Nairn 2017), PIC from a grid velocity in which "
+        "the round trip's smoothing is undone to order m.");
+      prm.declare_entry("FLIP fraction",
+                        "1",
+                        Patterns::Double(0, 1),
+                        "theta of 'flip/pic blend': 1 = FLIP (add the "
+                        "interpolated nodal acceleration), 0 = PIC (take the "
+                        "interpolated nodal velocity).");
+      prm.declare_entry("XPIC order",
+                        "2",
+                        Patterns::Integer(1, 20),
+                        "m of 'xpic': each order beyond 1 costs one more "
+                        "particle-grid round trip of the velocity per step; "
+                        "1 is PIC.");
+      prm.declare_entry("APIC energy limit",
+                        "true",
+                        Patterns::Bool(),
+                        "'apic' only: scale a point's affine matrix down "
+                        "where it would carry more kinetic energy than at "
+                        "the transfer that computed it (bilinear functions' "
+                        "second moment vanishes on cell edges; without the "
+                        "limit APIC creates energy, doc/transfers.md).");
+    }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  VelocityTransfer<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Transfer");
+    {
+      const std::string s = prm.get("Scheme");
+      transfer_scheme     = s == "xpic" ? TransferScheme::xpic :
+                            s == "apic" ? TransferScheme::apic :
+                                          TransferScheme::flip_pic_blend;
+      flip                = prm.get_double("FLIP fraction");
+      order               = prm.get_integer("XPIC order");
+      limit_affine_energy = prm.get_bool("APIC energy limit");
+    }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  VelocityTransfer<dim>::filter_coefficients() const
+  {
+    std::vector<double> c;
+    double              binomial = 1;
+    for (unsigned int k = 1; k <= order; ++k)
+      {
+        binomial = binomial * (order - k + 1) / k;
+        c.push_back((k % 2 == 1 ? 1. : -1.) * binomial);
+      }
+    return c;
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  VelocityTransfer<dim>::point_property_names() const
+  {
+    std::vector<std::string> names;
+    if (transfer_scheme == TransferScheme::apic)
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          names.push_back(std::string("affine_") + "xyz"[a] + "xyz"[b]);
+    if (transfer_scheme == TransferScheme::apic)
+      names.emplace_back("affine_energy");
+    return names;
+  }
+
+
+  template class VelocityTransfer<2>;
+  template class VelocityTransfer<3>;
+} // namespace MPM
