@@ -264,6 +264,10 @@ namespace MPM
         energy0 =
           s.kinetic_energy + s.strain_energy + s.gravitational_potential_energy;
         time0 = s.time;
+        const auto spin = simulator.spin_angular_momentum(Point<dim>(s.centre_of_mass),
+                                                          s.mean_velocity);
+        angular_momentum0 = spin.first;
+        angular_momentum_scale0 = spin.second;
       }
 
       void
@@ -287,12 +291,22 @@ namespace MPM
         max_mass_error     = std::max(max_mass_error, mass_error);
         max_momentum_error = std::max(max_momentum_error, momentum_error);
         max_energy_change  = std::max(max_energy_change, std::abs(energy_change));
+        // Spin: angular momentum about the moving centre of mass, which
+        // uniform gravity does not change.
+        const auto spin = simulator.spin_angular_momentum(Point<dim>(s.centre_of_mass),
+                                                          s.mean_velocity);
+        const double angular_momentum_error =
+          (spin.first - angular_momentum0).norm() /
+          std::max(1e-300, angular_momentum_scale0);
+        max_angular_momentum_error =
+          std::max(max_angular_momentum_error, angular_momentum_error);
         if (output_step)
           {
             std::ostringstream line;
             line << std::setw(12) << s.time << std::setw(14) << mass_error
                  << std::setw(14) << momentum_error << std::setw(14)
-                 << energy_change << '\n';
+                 << energy_change << std::setw(14) << angular_momentum_error
+                 << '\n';
             table += line.str();
           }
       }
@@ -303,10 +317,14 @@ namespace MPM
         report << "## conservation: mass and momentum against M0 and p0 + M0 "
                   "g t\n"
                << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t, or M0 |v|_mean,0 if g = 0)  "
-                  "energy change / max(|E0|, M0 g^2 t^2 / 2)\n"
+                  "energy change / max(|E0|, M0 g^2 t^2 / 2)  |L - L0| / "
+                  "sum m |x - x_c| |v - v_c| at t0 (L about the centre of "
+                  "mass x_c)\n"
                << table << "max mass error: " << max_mass_error
                << "\nmax momentum error: " << max_momentum_error
-               << "\nmax energy change: " << max_energy_change << '\n';
+               << "\nmax energy change: " << max_energy_change
+               << "\nmax angular momentum error: " << max_angular_momentum_error
+               << '\n';
       }
 
       void
@@ -328,7 +346,9 @@ namespace MPM
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar & mass0 & energy0 & time0 & momentum0 & momentum_scale0 & max_mass_error & max_momentum_error & max_energy_change & table;
+        ar & mass0 & energy0 & time0 & momentum0 & momentum_scale0 & max_mass_error & max_momentum_error & max_energy_change & table &
+          angular_momentum0 & angular_momentum_scale0 &
+          max_angular_momentum_error;
       }
 
     private:
@@ -337,6 +357,9 @@ namespace MPM
       double             momentum_scale0 = 0;
       double             max_mass_error = 0, max_momentum_error = 0,
                          max_energy_change = 0;
+      Tensor<1, 3>       angular_momentum0;
+      double             angular_momentum_scale0    = 0;
+      double             max_angular_momentum_error = 0;
       std::string        table;
     };
 

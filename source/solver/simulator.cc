@@ -1205,6 +1205,54 @@ namespace MPM
 
 
   template <int dim>
+  std::pair<Tensor<1, 3>, double>
+  Simulator<dim>::spin_angular_momentum(
+    const Point<dim>     &centre,
+    const Tensor<1, dim> &mean_velocity) const
+  {
+    using Layout     = PropertyLayout<dim>;
+    const auto cross = [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+      Tensor<1, 3> c;
+      if constexpr (dim == 2)
+        c[2] = a[0] * b[1] - a[1] * b[0];
+      else
+        c = cross_product_3d(a, b);
+      return c;
+    };
+    const bool   affine = transfer.scheme() == TransferScheme::apic;
+    Tensor<1, 3> L;
+    double       scale = 0;
+    for (const auto &point : particle_handler)
+      {
+        const auto           props = point.get_properties();
+        const double         m     = props[Layout::mass];
+        const Tensor<1, dim> r     = point.get_location() - centre;
+        const Tensor<1, dim> v =
+          read_vector<dim>(&props[Layout::velocity]) - mean_velocity;
+        L += m * cross(r, v);
+        scale += m * r.norm() * v.norm();
+        if (affine)
+          {
+            const auto &x = grid.cell_vertices(point.get_surrounding_cell());
+            Q1ShapeFunctions<dim> sf;
+            sf.reinit(x, point.get_reference_location());
+            Tensor<2, dim> C;
+            for (unsigned int a = 0; a < dim; ++a)
+              for (unsigned int b = 0; b < dim; ++b)
+                C[a][b] = props[transfer_slot + a * dim + b];
+            for (unsigned int i = 0; i < x.size(); ++i)
+              {
+                const Tensor<1, dim> dx = x[i] - point.get_location();
+                L += (m * sf.value[i]) * cross(dx, C * dx);
+              }
+          }
+      }
+    return {Utilities::MPI::sum(L, mpi_communicator),
+            Utilities::MPI::sum(scale, mpi_communicator)};
+  }
+
+
+  template <int dim>
   void
   Simulator<dim>::write_output(const bool force)
   {

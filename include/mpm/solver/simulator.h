@@ -163,6 +163,19 @@ namespace MPM
      */
     std::array<double, 3>
     energy_of_point(const double *props, const Point<dim> &x) const;
+
+    /**
+     * Angular momentum about the centre of mass @p centre of the points
+     * moving with mean velocity @p mean_velocity (3 components; only z in
+     * 2D), and its scale sum_p m_p |x_p - centre| |v_p - mean_velocity|.
+     * With APIC it includes the affine part of each point's velocity field,
+     * m_p sum_i N_i dx_i x (C_p dx_i), the part of the grid's angular
+     * momentum that the point carries (VelocityTransfer::update_affine()).
+     * Summed over all ranks.
+     */
+    std::pair<Tensor<1, 3>, double>
+    spin_angular_momentum(const Point<dim>     &centre,
+                          const Tensor<1, dim> &mean_velocity) const;
     /** @} */
 
   private:
