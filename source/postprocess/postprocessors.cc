@@ -297,7 +297,7 @@ namespace MPM
                                                           s.mean_velocity);
         const double angular_momentum_error =
           (spin.first - angular_momentum0).norm() /
-          std::max(1e-300, angular_momentum_scale0);
+          std::max({1e-300, angular_momentum_scale0, spin.second});
         max_angular_momentum_error =
           std::max(max_angular_momentum_error, angular_momentum_error);
         if (output_step)
@@ -318,7 +318,7 @@ namespace MPM
                   "g t\n"
                << "# time (s)   |M - M0|/M0  |p - p0 - M0 g t|/(M0 g t, or M0 |v|_mean,0 if g = 0)  "
                   "energy change / max(|E0|, M0 g^2 t^2 / 2)  |L - L0| / "
-                  "sum m |x - x_c| |v - v_c| at t0 (L about the centre of "
+                  "sum m |x - x_c| |v| (at t0, or now if larger; L about the centre of "
                   "mass x_c)\n"
                << table << "max mass error: " << max_mass_error
                << "\nmax momentum error: " << max_momentum_error

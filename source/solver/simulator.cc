@@ -1230,7 +1230,9 @@ namespace MPM
         const Tensor<1, dim> v =
           read_vector<dim>(&props[Layout::velocity]) - mean_velocity;
         L += m * cross(r, v);
-        scale += m * r.norm() * v.norm();
+        // With the absolute velocity: not zero for a body in pure
+        // translation, whose spin is zero.
+        scale += m * r.norm() * (v + mean_velocity).norm();
         if (affine)
           {
             const auto &x = grid.cell_vertices(point.get_surrounding_cell());

@@ -167,7 +167,7 @@ namespace MPM
     /**
      * Angular momentum about the centre of mass @p centre of the points
      * moving with mean velocity @p mean_velocity (3 components; only z in
-     * 2D), and its scale sum_p m_p |x_p - centre| |v_p - mean_velocity|.
+     * 2D), and its scale sum_p m_p |x_p - centre| |v_p|.
      * With APIC it includes the affine part of each point's velocity field,
      * m_p sum_i N_i dx_i x (C_p dx_i), the part of the grid's angular
      * momentum that the point carries (VelocityTransfer::update_affine()).
