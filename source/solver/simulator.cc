@@ -120,6 +120,13 @@ namespace MPM
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
+    if (transfer.scheme() == TransferScheme::apic &&
+        time_stepping.scheme != UpdateScheme::musl)
+      pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
+               "scheme' USF or USL fits each point's affine matrix to the "
+               "end-of-step grid velocity, which on bilinear cells was "
+               "measured unstable above CFL 0.05 (doc/transfers.md); MUSL "
+               "takes it from the MUSL remap and is stable.\n";
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
     stability_monitor.parse_parameters(prm);
