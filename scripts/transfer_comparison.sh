@@ -20,7 +20,7 @@ schemes=(
   "apic|--set|Transfer/Scheme=apic"
 )
 wall() { grep -o 'wall time [0-9.e+-]* s' "$1" | awk '{print $3}'; }
-field() { grep "^$2" "$1" 2>/dev/null | sed -E "s/$3/\1/" || true; }
+field() { grep "^$2" "$1" 2>/dev/null | sed -E "s|$3|\1|" || true; }
 echo "scheme | flume peak (m/s) | at (s) | rest from (s) | final front s (m) | wall (s) | collapse a=2 runout | / Lube | rest from (s) | wall (s)"
 for entry in "${schemes[@]}"; do
   IFS='|' read -r -a parts <<< "$entry"
@@ -35,7 +35,7 @@ for entry in "${schemes[@]}"; do
   f="$out/flume-$name/report.txt"
   c="$out/collapse-$name/report.txt"
   if [ -f "$f" ]; then
-    flume="$(field "$f" 'peak mean speed' '.*: ([0-9.e+-]+) m/s.*') | $(field "$f" 'peak mean speed' '.*t = ([0-9.e+-]+) s.*') | $(field "$f" 'mean speed below' '.*t = ([0-9.e+-]+) s on.*') | $(field "$f" 'final front' '.*s = ([0-9.e+-]+) m, x.*') | $(wall "$out/flume-$name.log")"
+    flume="$(field "$f" 'peak mean speed' '.*: ([0-9.e+-]+) m/s.*') | $(field "$f" 'peak mean speed' '.*t = ([0-9.e+-]+) s.*') | $(field "$f" 'mean speed below' '.*t = ([0-9.e+-]+) s on.*') | $(field "$f" 'final front' '^final front: s = ([0-9.e+-]+) m.*') | $(wall "$out/flume-$name.log")"
   else
     flume="stopped: $(grep -o 'left the mesh\|unstable' "$out/flume-$name.log" | head -1) | | | |"
   fi
