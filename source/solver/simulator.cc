@@ -690,7 +690,7 @@ namespace MPM
     TimerOutput::Scope t(timer, "transfer filter");
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     using Layout                      = PropertyLayout<dim>;
-    const auto coefficients           = transfer.filter_coefficients();
+    const auto &coefficients          = transfer.filter_coefficients();
     // u_1 = the constrained brought velocity (compute_nodal_velocity()).
     for (const unsigned int i : active_dofs)
       {
@@ -904,9 +904,6 @@ namespace MPM
               double &v = props[Layout::velocity + c];
               v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
             }
-          // APIC: the affine part from the same end-of-step grid velocity,
-          // at the point's position before the move (where its shape
-          // functions were evaluated).
           // APIC: with MUSL the affine matrix is set by the stress update
           // (the gradient of the remapped velocity) and the remap below is
           // PIC's; with USF and USL it is B D^{-1} of the end-of-step grid

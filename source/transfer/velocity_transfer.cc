@@ -64,21 +64,13 @@ namespace MPM
       limit_affine_energy = prm.get_bool("APIC energy limit");
     }
     prm.leave_subsection();
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  VelocityTransfer<dim>::filter_coefficients() const
-  {
-    std::vector<double> c;
-    double              binomial = 1;
+    xpic_coefficients.clear();
+    double binomial = 1;
     for (unsigned int k = 1; k <= order; ++k)
       {
         binomial = binomial * (order - k + 1) / k;
-        c.push_back((k % 2 == 1 ? 1. : -1.) * binomial);
+        xpic_coefficients.push_back((k % 2 == 1 ? 1. : -1.) * binomial);
       }
-    return c;
   }
 
 

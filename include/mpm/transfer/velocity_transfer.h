@@ -30,7 +30,9 @@ namespace MPM
     flip_pic_blend,
     /// XPIC(m) (Hammerquist and Nairn 2017): PIC from a grid velocity in
     /// which the smoothing of the particle-grid-particle round trip is
-    /// undone to order m. Never amplifies a mode (see filter_coefficients()).
+    /// undone to order m. On the points no mode is amplified (see
+    /// filter_coefficients()), but the filtered nodal velocity can
+    /// overshoot at light nodes (a material's edge): doc/transfers.md.
     xpic,
     /// APIC (Jiang et al. 2015): each point carries an affine velocity
     /// field, v(x) = v_p + C_p (x - x_p), which the transfers keep exactly
@@ -95,8 +97,11 @@ namespace MPM
      * too (no mode is amplified), those of the smooth modes (A near 1) move
      * much closer to 1 than PIC's A, and the null modes (noise) stay at 0.
      */
-    std::vector<double>
-    filter_coefficients() const;
+    const std::vector<double> &
+    filter_coefficients() const
+    {
+      return xpic_coefficients;
+    }
 
     /**
      * Property slots this scheme keeps per point, after the material
@@ -142,9 +147,7 @@ namespace MPM
           C[a][b] = affine[a * dim + b];
       if (!limit_affine_energy)
         return C;
-      double energy = 0;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        energy += sf.value[i] * (C * dx[i]).norm_square();
+      const double energy = affine_energy(sf, dx, C);
       const double stored = affine[dim * dim];
       if (energy > stored)
         C *= std::sqrt(stored / energy);
@@ -183,20 +186,32 @@ namespace MPM
                  const Tensor<2, dim>                         &C,
                  double                                       *affine)
     {
-      double energy = 0;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        energy += sf.value[i] * (C * dx[i]).norm_square();
       for (unsigned int a = 0; a < dim; ++a)
         for (unsigned int b = 0; b < dim; ++b)
           affine[a * dim + b] = C[a][b];
-      affine[dim * dim] = energy;
+      affine[dim * dim] = affine_energy(sf, dx, C);
     }
 
   private:
+    /// Twice the kinetic energy per unit mass of the affine field C at a
+    /// point: sum_i N_i |C dx_i|^2 = tr(C D_p C^T).
+    static double
+    affine_energy(const Q1ShapeFunctions<dim>                 &sf,
+                  const std::array<Tensor<1, dim>, n_vertices> &dx,
+                  const Tensor<2, dim>                         &C)
+    {
+      double energy = 0;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        energy += sf.value[i] * (C * dx[i]).norm_square();
+      return energy;
+    }
+
     TransferScheme transfer_scheme = TransferScheme::flip_pic_blend;
     double         flip            = 0;
     unsigned int   order           = 2;
     bool           limit_affine_energy = true;
+    /// XPIC's c_k, set with the order in parse_parameters().
+    std::vector<double> xpic_coefficients;
   };
 
 
