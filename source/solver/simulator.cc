@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
@@ -13,6 +14,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/solver/simulator.h>
+#include <mpm/transfer/point_domains.h>
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <chrono>
@@ -74,6 +76,7 @@ namespace MPM
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
     VelocityTransfer<dim>::declare_parameters(prm);
+    PointDomains<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
     LoadBalancing<dim>::declare_parameters(prm);
     Checkpointing<dim>::declare_parameters(prm);
@@ -120,6 +123,12 @@ namespace MPM
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
+    point_domains.parse_parameters(prm);
+    check_input(!point_domains.enabled() ||
+                  transfer.scheme() == TransferScheme::flip_pic_blend,
+                "'Transfer/Particle-grid weights = cpdi' works with "
+                "'Transfer/Scheme = flip/pic blend' only so far (APIC and XPIC "
+                "with CPDI are not implemented); choose one of the two.");
     if (transfer.scheme() == TransferScheme::apic &&
         time_stepping.scheme != UpdateScheme::musl)
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
@@ -155,6 +164,8 @@ namespace MPM
                         "state_" + std::to_string(i));
     for (const auto &name : transfer.point_property_names())
       names.push_back(name);
+    for (const auto &name : point_domains.point_property_names())
+      names.push_back(name);
     return names;
   }
 
@@ -173,9 +184,11 @@ namespace MPM
     // The material state, then the transfer's own slots (APIC's C_p).
     transfer_slot =
       PropertyLayout<dim>::state + materials.max_n_state_variables();
+    domain_slot = transfer_slot + transfer.n_point_properties();
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
-                                transfer_slot + transfer.n_point_properties());
+                                domain_slot +
+                                  point_domains.n_point_properties());
     load_balancing.connect(grid.triangulation, particle_handler);
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -285,7 +298,8 @@ namespace MPM
     std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
     local_dofs_of_cells.assign(grid.triangulation.n_active_cells(), {});
     for (const auto &tria_cell : grid.triangulation.active_cell_iterators())
-      if (tria_cell->is_locally_owned())
+      // Ghost cells too: CPDI's domains reach into them.
+      if (!tria_cell->is_artificial())
         {
           const DoFCellIterator cell(&grid.triangulation,
                                      tria_cell->level(),
@@ -304,6 +318,26 @@ namespace MPM
     active_dofs.clear();
     boundary_conditions.setup(grid, nodal_mass);
     point_relocation.initialize(grid);
+    cell_patches.clear();
+    if (point_domains.enabled())
+      {
+        // Each cell's patch: itself first, then the non-artificial cells
+        // sharing a vertex with it (where CPDI's corners may lie).
+        const auto sets = GridTools::vertex_to_cell_map(grid.triangulation);
+        cell_patches.assign(grid.triangulation.n_active_cells(), {});
+        for (const auto &cell : grid.triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              auto &patch = cell_patches[cell->active_cell_index()];
+              patch.push_back(cell);
+              for (const unsigned int v : cell->vertex_indices())
+                for (const auto &neighbour : sets[cell->vertex_index(v)])
+                  if (!neighbour->is_artificial() &&
+                      std::find(patch.begin(), patch.end(), neighbour) ==
+                        patch.end())
+                    patch.push_back(neighbour);
+            }
+      }
   }
 
 
@@ -473,6 +507,8 @@ namespace MPM
   void
   Simulator<dim>::prepare_transfer()
   {
+    if (point_domains.enabled())
+      return prepare_cpdi_transfer();
     TimerOutput::Scope t(timer, "shape functions");
     active_cells.clear();
     shape_functions.resize(particle_handler.n_locally_owned_particles());
@@ -584,6 +620,8 @@ namespace MPM
   void
   Simulator<dim>::map_mass_and_momentum(const bool with_forces)
   {
+    if (point_domains.enabled())
+      return map_mass_and_momentum_cpdi(with_forces);
     TimerOutput::Scope t(timer, "particle to grid");
     using Layout           = PropertyLayout<dim>;
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
@@ -788,6 +826,8 @@ namespace MPM
   void
   Simulator<dim>::map_forces()
   {
+    if (point_domains.enabled())
+      return map_forces_cpdi();
     TimerOutput::Scope t(timer, "particle to grid");
     const Tensor<1, dim> g = time_stepping.gravity;
     unsigned int         k = 0;
@@ -861,17 +901,14 @@ namespace MPM
   void
   Simulator<dim>::update_points_from_grid(const bool remap_momentum)
   {
+    if (point_domains.enabled())
+      return update_points_from_grid_cpdi(remap_momentum);
     TimerOutput::Scope t(timer, "grid to particle");
     using Layout        = PropertyLayout<dim>;
-    const double dt     = time_step;
-    const double flip   = transfer.flip_fraction();
     const bool   affine = transfer.scheme() == TransferScheme::apic;
     double       v_max2 = 0;
     auto         point  = particle_handler.begin();
     unsigned int k      = 0;
-    // Step 1 of the point location, with each new position at hand.
-    const bool locate_while_moving =
-      point_relocation.can_locate_while_moving();
     if (remap_momentum)
       zero_touched_entries(nodal_momentum);
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
@@ -898,12 +935,8 @@ namespace MPM
                 a[c] += N[i] * a_node[i][c];
                 v_new[c] += N[i] * v_node[i][c];
               }
-          auto props = point->get_properties();
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              double &v = props[Layout::velocity + c];
-              v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
-            }
+          double *props = point->get_properties().data();
+          advance_point(point, props, a, v_new, cell.map, v_max2);
           // APIC: with MUSL the affine matrix is set by the stress update
           // (the gradient of the remapped velocity) and the remap below is
           // PIC's; with USF and USL it is B D^{-1} of the end-of-step grid
@@ -914,14 +947,6 @@ namespace MPM
                                                                 shape_functions[k]),
                                                  v_node,
                                                  &props[transfer_slot]);
-          // As one Tensor expression: built component by component, the
-          // new position was stored as two scalars and read back as one
-          // 16-byte value for set_location(), a store-forwarding stall
-          // that was a tenth of this loop.
-          const Point<dim> x = point->get_location() + dt * v_new;
-          point->set_location(x);
-          if (locate_while_moving)
-            point_relocation.locate_in_cell(*cell.map, point, x);
           if (remap_momentum)
             {
               const double m = props[Layout::mass];
@@ -929,23 +954,6 @@ namespace MPM
               for (unsigned int i = 0; i < n_vertices; ++i)
                 for (unsigned int c = 0; c < dim; ++c)
                   remapped[i][c] += N[i] * m * v[c];
-            }
-          const double speed2 =
-            read_vector<dim>(&props[Layout::velocity]).norm_square();
-          v_max2 = std::max(v_max2, speed2);
-          // Blow-up check at the price of one sum: a NaN or infinity in the
-          // velocity, position or stress makes it non-finite.
-          double check = speed2 + x[0] + x[dim - 1];
-          for (unsigned int c = 0; c < 6; ++c)
-            check += props[Layout::stress + c];
-          if (!std::isfinite(check) && first_bad_point.empty())
-            {
-              std::ostringstream s;
-              s << "material point " << point->get_id() << " at ("
-                << point->get_location() << ") in cell "
-                << point->get_surrounding_cell()->id().to_string()
-                << " has a non-finite velocity, position or stress";
-              first_bad_point = s.str();
             }
         }
         if (remap_momentum)
@@ -956,6 +964,61 @@ namespace MPM
         nodal_momentum.compress(VectorOperation::add);
         nodal_momentum.update_ghost_values();
       }
+    set_max_point_speed(v_max2);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::advance_point(
+    typename Particles::ParticleHandler<dim>::particle_iterator point,
+    double                                                           *props,
+    const Tensor<1, dim>                                             &a,
+    const Tensor<1, dim>                                             &v_new,
+    const BilinearCellMap                                            *map,
+    double                                                           &v_max2)
+  {
+    using Layout      = PropertyLayout<dim>;
+    const double dt   = time_step;
+    const double flip = transfer.flip_fraction();
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        double &v = props[Layout::velocity + c];
+        v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
+      }
+    // As one Tensor expression: built component by component, the new
+    // position was stored as two scalars and read back as one 16-byte
+    // value for set_location(), a store-forwarding stall that was a tenth
+    // of this loop.
+    const Point<dim> x = point->get_location() + dt * v_new;
+    point->set_location(x);
+    // Step 1 of the point location, with each new position at hand.
+    if (point_relocation.can_locate_while_moving())
+      point_relocation.locate_in_cell(*map, point, x);
+    const double speed2 =
+      read_vector<dim>(&props[Layout::velocity]).norm_square();
+    v_max2 = std::max(v_max2, speed2);
+    // Blow-up check at the price of one sum: a NaN or infinity in the
+    // velocity, position or stress makes it non-finite.
+    double check = speed2 + x[0] + x[dim - 1];
+    for (unsigned int c = 0; c < 6; ++c)
+      check += props[Layout::stress + c];
+    if (!std::isfinite(check) && first_bad_point.empty())
+      {
+        std::ostringstream s;
+        s << "material point " << point->get_id() << " at ("
+          << point->get_location() << ") in cell "
+          << point->get_surrounding_cell()->id().to_string()
+          << " has a non-finite velocity, position or stress";
+        first_bad_point = s.str();
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::set_max_point_speed(const double v_max2)
+  {
     // A bad point makes the largest speed infinite on every rank: the
     // reduction that exists anyway tells all ranks to stop.
     max_point_speed = Utilities::MPI::max(
@@ -1032,11 +1095,10 @@ namespace MPM
   Simulator<dim>::update_stress(const NodalVector &velocity,
                                 const bool         set_affine)
   {
+    if (point_domains.enabled())
+      return update_stress_cpdi(velocity);
     TimerOutput::Scope t(timer, "stress update");
-    using Layout    = PropertyLayout<dim>;
-    const double       dt           = time_step;
-    const unsigned int n_state      = materials.max_n_state_variables();
-    unsigned int       k            = 0;
+    unsigned int       k = 0;
     for (const auto &cell : active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         {
@@ -1049,24 +1111,8 @@ namespace MPM
                 v[c] = velocity.local_element(cell.dofs[i][c]);
               grad_v += outer_product(v, sf.gradient[i]);
             }
-          SymmetricTensor<2, 3> strain_increment;
-          for (unsigned int a = 0; a < dim; ++a)
-            for (unsigned int b = a; b < dim; ++b)
-              strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
-
           double *props = point_properties[k];
-          const Material &material =
-            materials[static_cast<unsigned int>(props[Layout::material_id])];
-          SymmetricTensor<2, 3> stress =
-            read_symmetric_tensor(&props[Layout::stress]);
-          material.model->update_stress(
-            strain_increment,
-            stress,
-            ArrayView<double>(props + Layout::state, n_state));
-          write_symmetric_tensor(stress, &props[Layout::stress]);
-          write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
-                                   strain_increment,
-                                 &props[Layout::strain]);
+          update_point_stress(props, grad_v);
           // MUSL with APIC: the affine matrix is this velocity gradient
           // (see VelocityTransfer::store_affine()).
           if (set_affine)
@@ -1074,11 +1120,39 @@ namespace MPM
                                                 vertex_offsets(cell, sf),
                                                 grad_v,
                                                 props + transfer_slot);
-          // Volume follows the determinant of the incremental deformation
-          // gradient I + dt grad v.
-          props[Layout::volume] *=
-            determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
         }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_point_stress(double               *props,
+                                      const Tensor<2, dim> &grad_v)
+  {
+    using Layout               = PropertyLayout<dim>;
+    const double       dt      = time_step;
+    const unsigned int n_state = materials.max_n_state_variables();
+    SymmetricTensor<2, 3> strain_increment;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = a; b < dim; ++b)
+        strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
+
+    const Material &material =
+      materials[static_cast<unsigned int>(props[Layout::material_id])];
+    SymmetricTensor<2, 3> stress =
+      read_symmetric_tensor(&props[Layout::stress]);
+    material.model->update_stress(strain_increment,
+                                  stress,
+                                  ArrayView<double>(props + Layout::state,
+                                                    n_state));
+    write_symmetric_tensor(stress, &props[Layout::stress]);
+    write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
+                             strain_increment,
+                           &props[Layout::strain]);
+    // Volume follows the determinant of the incremental deformation
+    // gradient I + dt grad v.
+    props[Layout::volume] *=
+      determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
   }
 
 

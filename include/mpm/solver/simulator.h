@@ -21,6 +21,7 @@
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/time_stepping.h>
+#include <mpm/transfer/point_domains.h>
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <fstream>
@@ -351,6 +352,58 @@ namespace MPM
     update_stress(const NodalVector &nodal_velocity,
                   const bool         set_affine = false);
 
+    /**
+     * One point's part of grid to particle, the same for every weight:
+     * its new velocity from the interpolated nodal acceleration @p a and
+     * end-of-step velocity @p v_new (FLIP/PIC blend), its new position
+     * (located in its cell, whose 2D map is @p map, if the relocation does
+     * that while moving), the largest speed @p v_max2 so far and the
+     * blow-up check.
+     */
+    void
+    advance_point(
+      typename Particles::ParticleHandler<dim>::particle_iterator point,
+      double                                                           *props,
+      const Tensor<1, dim>                                             &a,
+      const Tensor<1, dim>                                             &v_new,
+      const BilinearCellMap                                            *map,
+      double &v_max2);
+
+    /// The largest point speed on all ranks from this rank's @p v_max2;
+    /// stops the run if a point became non-finite. Collective.
+    void
+    set_max_point_speed(const double v_max2);
+
+    /// One point's strain, stress and volume from its velocity gradient.
+    void
+    update_point_stress(double *props, const Tensor<2, dim> &grad_v);
+
+    /**
+     * @name CPDI's passes (source/solver/cpdi_transfer.cc)
+     *
+     * With 'Particle-grid weights = cpdi' each point acts through the
+     * 2^dim corners of its domain (PointDomains): the entries of
+     * active_cells and shape_functions are the corners, grouped by the
+     * cell they lie in, with corner_point, corner_alpha and corner_beta
+     * saying whose corner each is and how it weighs.
+     */
+    /// @{
+    void
+    prepare_cpdi_transfer();
+
+    void
+    map_mass_and_momentum_cpdi(const bool with_forces);
+
+    void
+    map_forces_cpdi();
+
+    void
+    update_points_from_grid_cpdi(const bool remap_momentum);
+
+    void
+    update_stress_cpdi(const NodalVector &velocity);
+    /// @}
+
     void
     relocate_points();
 
@@ -372,6 +425,9 @@ namespace MPM
     BoundaryConditions<dim>         boundary_conditions;
     TimeSteppingParameters<dim>     time_stepping;
     VelocityTransfer<dim>           transfer;
+    PointDomains<dim>               point_domains;
+    /// The first property slot of the point domains (CPDI).
+    unsigned int                    domain_slot = 0;
     /// The first property slot of the transfer's own point data.
     unsigned int                    transfer_slot = 0;
     OutputWriter<dim>               output_writer;
@@ -420,6 +476,19 @@ namespace MPM
      * point is added or removed in between, so the pool does not move.
      */
     std::vector<double *> point_properties;
+    /// CPDI: each corner's point (index into point_properties), alpha_c
+    /// and beta_c (PointDomains), in the order of shape_functions.
+    std::vector<unsigned int>   corner_point;
+    std::vector<double>         corner_alpha;
+    std::vector<Tensor<1, dim>> corner_beta;
+    /// CPDI: each point's cell map (2D), and per-point sums of a pass.
+    std::vector<const BilinearCellMap *> point_cell_map;
+    std::vector<Tensor<1, dim>>          point_sum_a, point_sum_b;
+    std::vector<Tensor<2, dim>>          point_sum_gradient;
+    /// CPDI: the cells a corner of a point in each locally owned cell may
+    /// lie in (by active_cell_index(); the cell itself first).
+    std::vector<std::vector<typename Triangulation<dim>::active_cell_iterator>>
+      cell_patches;
     /// Local element indices touched by the points of this step.
     std::vector<unsigned int>          active_dofs;
     std::vector<unsigned char>         dof_is_active;

@@ -1,0 +1,159 @@
+#ifndef mpm_transfer_point_domains_h
+#define mpm_transfer_point_domains_h
+
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * Which particle-grid weights the transfers use ("Transfer/Particle-grid
+   * weights" in the parameter file).
+   */
+  enum class WeightFunctions
+  {
+    /// The mesh's own bilinear (trilinear) functions at the point: a point
+    /// acts only on the vertices of the cell it is in, so its force on a
+    /// node jumps when it crosses a cell edge (the cell-crossing error).
+    linear,
+    /// CPDI (Sadeghirad, Brannon and Burghardt 2011): each point owns a
+    /// parallelogram (parallelepiped) domain that deforms with it; its
+    /// weights are the mesh functions averaged over the domain,
+    /// interpolated from the domain's corners. Smooth in the point's
+    /// position: no cell-crossing error.
+    cpdi
+  };
+
+  /**
+   * The material points' domains for CPDI on the isoparametric mesh, and
+   * the arithmetic that turns a domain into weights.
+   *
+   * A point's domain is the parallelepiped x_p + R s, s in [-1, 1]^dim,
+   * spanned by the columns of R (its half edge vectors), stored in the
+   * point's properties. R starts aligned with the point's cell (the cell's
+   * Jacobian at the point, scaled so that the domain's volume is the
+   * point's volume: on a ground-conforming mesh the domains of the points
+   * next to the ground lie along it) and follows the point's deformation:
+   * R <- (I + dt grad v) R with the same velocity gradient that updates its
+   * stress and volume, so 2^dim det R stays equal to its volume.
+   *
+   * The weight of node i is the average of its shape function over the
+   * domain, with N_i interpolated from the domain's corners x_c by the
+   * domain's own multilinear functions M_c:
+   *   w_i = sum_c alpha_c N_i(x_c),  grad w_i = sum_c beta_c N_i(x_c),
+   *   alpha_c = (1/V) int M_c,  beta_c = (1/V) int grad M_c.
+   * Whatever the corners (a corner that is moved, see below, makes the
+   * domain a general quadrilateral), sum_c alpha_c = 1 and sum_c beta_c = 0,
+   * so the weights are a partition of unity with gradients summing to zero,
+   * and sum_c beta_c (x) x_c = I: a linear velocity field gives its exact
+   * gradient. For a parallelepiped alpha_c = 2^-dim.
+   *
+   * A corner must lie in a cell of the mesh that a step can write to: the
+   * point's own cell or one sharing a vertex with it (the same set on one
+   * rank or many: every such cell is owned or a ghost). A corner outside
+   * that patch (outside the mesh, beyond a wall, or a domain stretched over
+   * more than a cell) is moved towards the point's centre, halving its
+   * offset until it is inside; the stored domain is not changed. The
+   * weights then come from a smaller domain on that side, as if the
+   * material were cut at the boundary.
+   */
+  template <int dim>
+  class PointDomains
+  {
+  public:
+    static constexpr unsigned int n_corners =
+      GeometryInfo<dim>::vertices_per_cell;
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    WeightFunctions
+    weight_functions() const
+    {
+      return weights;
+    }
+
+    bool
+    enabled() const
+    {
+      return weights == WeightFunctions::cpdi;
+    }
+
+    /// Property slots per point (R, row-major) when enabled.
+    unsigned int
+    n_point_properties() const
+    {
+      return enabled() ? dim * dim : 0;
+    }
+
+    std::vector<std::string>
+    point_property_names() const;
+
+    /**
+     * The initial domain of a point of volume @p volume whose cell has the
+     * Jacobian @p jacobian (reference cell [0,1]^dim to real space) at the
+     * point: R = s J with s such that 2^dim det R = volume.
+     */
+    static Tensor<2, dim>
+    initial_domain(const Tensor<2, dim> &jacobian, const double volume);
+
+    /**
+     * Offset x_c - x_p of corner @p c of the domain @p R (deal.II's vertex
+     * order: bit d of c is the sign of s_d).
+     */
+    static Tensor<1, dim>
+    corner_offset(const Tensor<2, dim> &R, const unsigned int c)
+    {
+      Tensor<1, dim> s;
+      for (unsigned int d = 0; d < dim; ++d)
+        s[d] = ((c >> d) & 1) ? 1. : -1.;
+      return R * s;
+    }
+
+    /**
+     * alpha_c and beta_c (see the class documentation) of the domain with
+     * corners @p corners (deal.II's vertex order), by 2^dim-point Gauss
+     * quadrature on the domain (exact for a multilinear domain in 2D).
+     * Returns false if the domain is inverted at a quadrature point.
+     */
+    static bool
+    corner_weights(const std::array<Point<dim>, n_corners> &corners,
+                   std::array<double, n_corners>           &alpha,
+                   std::array<Tensor<1, dim>, n_corners>   &beta);
+
+    /// Read R from a point's slots @p data.
+    static Tensor<2, dim>
+    read(const double *data)
+    {
+      Tensor<2, dim> R;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          R[a][b] = data[a * dim + b];
+      return R;
+    }
+
+    static void
+    write(const Tensor<2, dim> &R, double *data)
+    {
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          data[a * dim + b] = R[a][b];
+    }
+
+  private:
+    WeightFunctions weights = WeightFunctions::linear;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,463 @@
+// The Simulator's particle-grid passes with CPDI weights (PointDomains):
+// every point acts on the nodes through the corners of its domain. The
+// linear-weight passes, in simulator.cc, are the same passes with one
+// "corner" per point at the point itself, alpha = 1 and the gradient of the
+// mesh functions in place of beta; kept apart so that the fast path keeps
+// its per-cell layout.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/grid/inverse_mapping.h>
+#include <mpm/material_points/property_layout.h>
+#include <mpm/solver/simulator.h>
+#include <mpm/transfer/point_domains.h>
+
+#include <limits>
+#include <sstream>
+
+namespace MPM
+{
+  namespace
+  {
+    /// Whether the cell with @p vertices (and, in 2D, @p map) contains
+    /// @p x, and its reference coordinates @p xi there.
+    template <int dim>
+    bool
+    cell_contains(
+      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
+                            &vertices,
+      const BilinearCellMap *map,
+      const Point<dim>      &x,
+      Point<dim>            &xi)
+    {
+      if constexpr (dim == 2)
+        {
+          (void)vertices;
+          return map->contains(x, xi);
+        }
+      else
+        {
+          (void)map;
+          const auto result = inverse_map_newton<dim>(vertices, x);
+          if (!result.success || !inside_unit_cell(result.xi))
+            return false;
+          xi = result.xi;
+          return true;
+        }
+    }
+
+
+    /// The Jacobian d x / d xi of the cell with @p vertices at @p xi.
+    template <int dim>
+    Tensor<2, dim>
+    cell_jacobian(
+      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
+                       &vertices,
+      const Point<dim> &xi)
+    {
+      Tensor<2, dim> J;
+      for (unsigned int i = 0; i < vertices.size(); ++i)
+        {
+          Tensor<1, dim> gradient;
+          for (unsigned int e = 0; e < dim; ++e)
+            {
+              double g = ((i >> e) & 1) ? 1. : -1.;
+              for (unsigned int d = 0; d < dim; ++d)
+                if (d != e)
+                  g *= ((i >> d) & 1) ? xi[d] : 1. - xi[d];
+              gradient[e] = g;
+            }
+          J += outer_product(vertices[i] - vertices[0], gradient);
+        }
+      return J;
+    }
+
+
+    /// The dim x dim part of a point's stress.
+    template <int dim>
+    Tensor<2, dim>
+    in_plane_stress(const double *props)
+    {
+      const SymmetricTensor<2, 3> stress =
+        read_symmetric_tensor(&props[PropertyLayout<dim>::stress]);
+      Tensor<2, dim> sigma;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          sigma[a][b] = stress[a][b];
+      return sigma;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  Simulator<dim>::prepare_cpdi_transfer()
+  {
+    TimerOutput::Scope     t(timer, "shape functions");
+    constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
+    using CellIterator = typename Triangulation<dim>::active_cell_iterator;
+    using Layout       = PropertyLayout<dim>;
+    const unsigned int n_points =
+      particle_handler.n_locally_owned_particles();
+    point_properties.resize(n_points);
+    point_cell_map.resize(n_points);
+
+    struct Corner
+    {
+      CellIterator   cell;
+      unsigned int   point;
+      Point<dim>     xi;
+      double         alpha;
+      Tensor<1, dim> beta;
+    };
+    std::vector<Corner> corners;
+    corners.reserve(n_points * n_corners);
+
+    unsigned int p = 0;
+    for (auto it = particle_handler.begin(); it != particle_handler.end();)
+      {
+        const CellIterator cell   = it->get_surrounding_cell();
+        const auto         points = particle_handler.particles_in_cell(cell);
+        const auto        &patch  = cell_patches[cell->active_cell_index()];
+        for (auto point = points.begin(); point != points.end(); ++point, ++p)
+          {
+            double *props       = point->get_properties().data();
+            point_properties[p] = props;
+            point_cell_map[p] =
+              dim == 2 ? &grid.bilinear_map(cell) : nullptr;
+            // A point without a domain yet (new, or read from a file) gets
+            // the one of PointDomains::initial_domain().
+            Tensor<2, dim> R = PointDomains<dim>::read(props + domain_slot);
+            if (R.norm_square() == 0)
+              {
+                R = PointDomains<dim>::initial_domain(
+                  cell_jacobian<dim>(grid.cell_vertices(cell),
+                                     point->get_reference_location()),
+                  props[Layout::volume]);
+                PointDomains<dim>::write(R, props + domain_slot);
+              }
+            const Point<dim> x_p = point->get_location();
+            std::array<Point<dim>, n_corners> x;
+            std::array<CellIterator, n_corners> corner_cell;
+            std::array<Point<dim>, n_corners>   xi;
+            for (unsigned int c = 0; c < n_corners; ++c)
+              {
+                const Tensor<1, dim> offset =
+                  PointDomains<dim>::corner_offset(R, c);
+                bool found = false;
+                // Outside the patch (beyond the mesh, or the domain
+                // stretched past the neighbours): halve the offset.
+                for (double s = 1; !found && s > 1. / 1024; s *= 0.5)
+                  {
+                    x[c] = x_p + s * offset;
+                    for (const auto &candidate : patch)
+                      if (cell_contains<dim>(
+                            grid.cell_vertices(candidate),
+                            dim == 2 ? &grid.bilinear_map(candidate) :
+                                       nullptr,
+                            x[c],
+                            xi[c]))
+                        {
+                          corner_cell[c] = candidate;
+                          found          = true;
+                          break;
+                        }
+                  }
+                if (!found)
+                  {
+                    x[c]           = x_p;
+                    corner_cell[c] = cell;
+                    xi[c]          = point->get_reference_location();
+                  }
+              }
+            std::array<double, n_corners>         alpha;
+            std::array<Tensor<1, dim>, n_corners> beta;
+            if (!PointDomains<dim>::corner_weights(x, alpha, beta))
+              {
+                std::ostringstream s;
+                s << "The CPDI domain of material point " << point->get_id()
+                  << " at (" << x_p << ") is inverted (domain vectors "
+                  << R << "): the material it represents has turned inside "
+                  << "out; reduce the time step.";
+                throw std::runtime_error(s.str());
+              }
+            for (unsigned int c = 0; c < n_corners; ++c)
+              corners.push_back({corner_cell[c], p, xi[c], alpha[c], beta[c]});
+          }
+        it = points.end();
+      }
+
+    // Group the corners by cell (a counting sort in the order in which the
+    // cells were first touched), so that each pass adds to a cell's nodes
+    // once for all corners in it.
+    std::vector<unsigned int> slot_of_cell(grid.triangulation.n_active_cells(),
+                                           numbers::invalid_unsigned_int);
+    std::vector<CellIterator> touched;
+    std::vector<unsigned int> count;
+    for (const auto &corner : corners)
+      {
+        unsigned int &slot = slot_of_cell[corner.cell->active_cell_index()];
+        if (slot == numbers::invalid_unsigned_int)
+          {
+            slot = touched.size();
+            touched.push_back(corner.cell);
+            count.push_back(0);
+          }
+        ++count[slot];
+      }
+    std::vector<unsigned int> next(touched.size() + 1, 0);
+    for (unsigned int s = 0; s < touched.size(); ++s)
+      next[s + 1] = next[s] + count[s];
+    shape_functions.resize(corners.size());
+    corner_point.resize(corners.size());
+    corner_alpha.resize(corners.size());
+    corner_beta.resize(corners.size());
+    for (const auto &corner : corners)
+      {
+        const unsigned int k =
+          next[slot_of_cell[corner.cell->active_cell_index()]]++;
+        if constexpr (dim == 2)
+          shape_functions[k].reinit(grid.bilinear_map(corner.cell), corner.xi);
+        else
+          shape_functions[k].reinit(grid.cell_vertices(corner.cell),
+                                    corner.xi);
+        corner_point[k] = corner.point;
+        corner_alpha[k] = corner.alpha;
+        corner_beta[k]  = corner.beta;
+      }
+
+    active_cells.clear();
+    active_dofs.clear();
+    double h_min = std::numeric_limits<double>::max();
+    for (unsigned int s = 0; s < touched.size(); ++s)
+      {
+        const CellIterator &cell = touched[s];
+        h_min = std::min(h_min, grid.cell_size(cell));
+        ActiveCell active{count[s],
+                          local_dofs_of_cells[cell->active_cell_index()],
+                          &grid.cell_vertices(cell)};
+        if constexpr (dim == 2)
+          active.map = &grid.bilinear_map(cell);
+        for (const auto &vertex_dofs : active.dofs)
+          for (const unsigned int local : vertex_dofs)
+            if (!dof_is_active[local])
+              {
+                dof_is_active[local] = 1;
+                active_dofs.push_back(local);
+              }
+        active_cells.push_back(active);
+      }
+    for (const unsigned int i : active_dofs)
+      dof_is_active[i] = 0;
+    active_cell_size = Utilities::MPI::min(h_min, mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_mass_and_momentum_cpdi(const bool with_forces)
+  {
+    TimerOutput::Scope     t(timer, "particle to grid");
+    using Layout                      = PropertyLayout<dim>;
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    const Tensor<1, dim>   g          = time_stepping.gravity;
+    unsigned int           k          = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> mass, momentum, forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const double *props = point_properties[corner_point[k]];
+            const double  m     = corner_alpha[k] * props[Layout::mass];
+            const auto    v     = read_vector<dim>(&props[Layout::velocity]);
+            const auto   &N     = shape_functions[k].value;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              {
+                const double mi = N[i] * m;
+                for (unsigned int c = 0; c < dim; ++c)
+                  {
+                    mass[i][c] += mi;
+                    momentum[i][c] += mi * v[c];
+                  }
+              }
+            if (with_forces)
+              {
+                // f_i = -V sigma grad w_i + w_i m g, corner by corner.
+                const Tensor<1, dim> f =
+                  -props[Layout::volume] *
+                    (in_plane_stress<dim>(props) * corner_beta[k]) +
+                  m * g;
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  forces[i] += N[i] * f;
+              }
+          }
+        add_to_nodes(cell, mass, nodal_mass);
+        add_to_nodes(cell, momentum, nodal_momentum);
+        if (with_forces)
+          add_to_nodes(cell, forces, nodal_force);
+      }
+    nodal_mass.compress(VectorOperation::add);
+    nodal_momentum.compress(VectorOperation::add);
+    nodal_mass.update_ghost_values();
+    nodal_momentum.update_ghost_values();
+    if (with_forces)
+      {
+        nodal_force.compress(VectorOperation::add);
+        nodal_force.update_ghost_values();
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_forces_cpdi()
+  {
+    TimerOutput::Scope     t(timer, "particle to grid");
+    using Layout                      = PropertyLayout<dim>;
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    const Tensor<1, dim>   g          = time_stepping.gravity;
+    unsigned int           k          = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const double        *props = point_properties[corner_point[k]];
+            const Tensor<1, dim> f =
+              -props[Layout::volume] *
+                (in_plane_stress<dim>(props) * corner_beta[k]) +
+              (corner_alpha[k] * props[Layout::mass]) * g;
+            const auto &N = shape_functions[k].value;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              forces[i] += N[i] * f;
+          }
+        add_to_nodes(cell, forces, nodal_force);
+      }
+    nodal_force.compress(VectorOperation::add);
+    nodal_force.update_ghost_values();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_points_from_grid_cpdi(const bool remap_momentum)
+  {
+    TimerOutput::Scope     t(timer, "grid to particle");
+    using Layout                      = PropertyLayout<dim>;
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    const unsigned int     n_points   = point_properties.size();
+    // 1. Each point's interpolated acceleration and velocity, summed over
+    //    its corners.
+    point_sum_a.assign(n_points, Tensor<1, dim>());
+    point_sum_b.assign(n_points, Tensor<1, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> a_node, v_node;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              a_node[i][c] = nodal_acceleration.local_element(cell.dofs[i][c]);
+              v_node[i][c] = nodal_velocity_new.local_element(cell.dofs[i][c]);
+            }
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const auto    &N = shape_functions[k].value;
+            Tensor<1, dim> a, v;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              {
+                a += N[i] * a_node[i];
+                v += N[i] * v_node[i];
+              }
+            const unsigned int p = corner_point[k];
+            point_sum_a[p] += corner_alpha[k] * a;
+            point_sum_b[p] += corner_alpha[k] * v;
+          }
+      }
+    // 2. The points, in the order of point_properties.
+    double       v_max2 = 0;
+    unsigned int p      = 0;
+    for (auto point = particle_handler.begin(); point != particle_handler.end();
+         ++point, ++p)
+      advance_point(point,
+                    point_properties[p],
+                    point_sum_a[p],
+                    point_sum_b[p],
+                    point_cell_map[p],
+                    v_max2);
+    // 3. MUSL: the points' new momentum back to the nodes.
+    if (remap_momentum)
+      {
+        zero_touched_entries(nodal_momentum);
+        k = 0;
+        for (const auto &cell : active_cells)
+          {
+            std::array<Tensor<1, dim>, n_vertices> remapped;
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              {
+                const double *props = point_properties[corner_point[k]];
+                const Tensor<1, dim> mv =
+                  (corner_alpha[k] * props[Layout::mass]) *
+                  read_vector<dim>(&props[Layout::velocity]);
+                const auto &N = shape_functions[k].value;
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  remapped[i] += N[i] * mv;
+              }
+            add_to_nodes(cell, remapped, nodal_momentum);
+          }
+        nodal_momentum.compress(VectorOperation::add);
+        nodal_momentum.update_ghost_values();
+      }
+    set_max_point_speed(v_max2);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_stress_cpdi(const NodalVector &velocity)
+  {
+    TimerOutput::Scope     t(timer, "stress update");
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    const unsigned int     n_points   = point_properties.size();
+    // grad v_p = sum_i v_i (x) grad w_i = sum_c v(x_c) (x) beta_c.
+    point_sum_gradient.assign(n_points, Tensor<2, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> v_node;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            v_node[i][c] = velocity.local_element(cell.dofs[i][c]);
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const auto    &N = shape_functions[k].value;
+            Tensor<1, dim> v;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              v += N[i] * v_node[i];
+            point_sum_gradient[corner_point[k]] +=
+              outer_product(v, corner_beta[k]);
+          }
+      }
+    const double dt = time_step;
+    for (unsigned int p = 0; p < n_points; ++p)
+      {
+        double              *props  = point_properties[p];
+        const Tensor<2, dim> grad_v = point_sum_gradient[p];
+        update_point_stress(props, grad_v);
+        // The domain deforms with the point: R <- (I + dt grad v) R.
+        const Tensor<2, dim> R = PointDomains<dim>::read(props + domain_slot);
+        PointDomains<dim>::write(R + dt * (grad_v * R), props + domain_slot);
+      }
+  }
+
+
+#define MPM_INSTANTIATE(dim)                                               \
+  template void Simulator<dim>::prepare_cpdi_transfer();                   \
+  template void Simulator<dim>::map_mass_and_momentum_cpdi(const bool);    \
+  template void Simulator<dim>::map_forces_cpdi();                         \
+  template void Simulator<dim>::update_points_from_grid_cpdi(const bool);  \
+  template void Simulator<dim>::update_stress_cpdi(const NodalVector &);
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
+} // namespace MPM

@@ -1,0 +1,123 @@
+#include <mpm/transfer/point_domains.h>
+
+#include <cmath>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  PointDomains<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Transfer");
+    {
+      prm.declare_entry(
+        "Particle-grid weights",
+        "linear",
+        Patterns::Selection("linear|cpdi"),
+        "The weights by which points and nodes exchange mass, momentum and "
+        "force. 'linear': the mesh's bilinear functions at the point (a "
+        "point acts on the vertices of its cell only: forces jump when it "
+        "crosses a cell edge). 'cpdi': the point's parallelogram domain, "
+        "which deforms with it, averages the mesh functions over it "
+        "(Sadeghirad et al. 2011); smooth across cell edges, about four "
+        "times the transfer cost (doc/convergence.md).");
+    }
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PointDomains<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Transfer");
+    weights = prm.get("Particle-grid weights") == "cpdi" ?
+                WeightFunctions::cpdi :
+                WeightFunctions::linear;
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  PointDomains<dim>::point_property_names() const
+  {
+    std::vector<std::string> names;
+    if (enabled())
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          names.push_back(std::string("domain_") + "xyz"[a] + "xyz"[b]);
+    return names;
+  }
+
+
+  template <int dim>
+  Tensor<2, dim>
+  PointDomains<dim>::initial_domain(const Tensor<2, dim> &jacobian,
+                                    const double          volume)
+  {
+    const double det = determinant(jacobian);
+    const double s   = std::pow(volume / (std::pow(2., dim) * det), 1. / dim);
+    return s * jacobian;
+  }
+
+
+  template <int dim>
+  bool
+  PointDomains<dim>::corner_weights(
+    const std::array<Point<dim>, n_corners> &corners,
+    std::array<double, n_corners>           &alpha,
+    std::array<Tensor<1, dim>, n_corners>   &beta)
+  {
+    alpha.fill(0.);
+    beta.fill(Tensor<1, dim>());
+    const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
+    double       volume   = 0;
+    for (unsigned int q = 0; q < n_corners; ++q)
+      {
+        // Quadrature point q: coordinate d is gauss[bit d of q]; weight
+        // 2^-dim, dropped (it cancels in the ratios).
+        Point<dim> xi;
+        for (unsigned int d = 0; d < dim; ++d)
+          xi[d] = gauss[(q >> d) & 1];
+        std::array<double, n_corners>         M;
+        std::array<Tensor<1, dim>, n_corners> dM;
+        Tensor<2, dim>                        J;
+        for (unsigned int c = 0; c < n_corners; ++c)
+          {
+            M[c] = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              M[c] *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
+            for (unsigned int e = 0; e < dim; ++e)
+              {
+                double g = ((c >> e) & 1) ? 1. : -1.;
+                for (unsigned int d = 0; d < dim; ++d)
+                  if (d != e)
+                    g *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
+                dM[c][e] = g;
+              }
+            J += outer_product(corners[c] - corners[0], dM[c]);
+          }
+        const double det = determinant(J);
+        if (!(det > 0))
+          return false;
+        const Tensor<2, dim> inverse_transpose = transpose(invert(J));
+        volume += det;
+        for (unsigned int c = 0; c < n_corners; ++c)
+          {
+            alpha[c] += M[c] * det;
+            beta[c] += det * (inverse_transpose * dM[c]);
+          }
+      }
+    for (unsigned int c = 0; c < n_corners; ++c)
+      {
+        alpha[c] /= volume;
+        beta[c] /= volume;
+      }
+    return true;
+  }
+
+
+  template class PointDomains<2>;
+  template class PointDomains<3>;
+} // namespace MPM
