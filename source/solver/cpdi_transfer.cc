@@ -446,7 +446,8 @@ namespace MPM
         update_point_stress(props, grad_v);
         // The domain deforms with the point: R <- (I + dt grad v) R.
         const Tensor<2, dim> R = PointDomains<dim>::read(props + domain_slot);
-        PointDomains<dim>::write(R + dt * (grad_v * R), props + domain_slot);
+        PointDomains<dim>::write(point_domains.deformed_domain(R, dt * grad_v),
+                                 props + domain_slot);
       }
   }
 

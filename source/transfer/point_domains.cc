@@ -21,6 +21,15 @@ namespace MPM
         "which deforms with it, averages the mesh functions over it "
         "(Sadeghirad et al. 2011); smooth across cell edges, about four "
         "times the transfer cost (doc/convergence.md).");
+      prm.declare_entry(
+        "CPDI stretch limit",
+        "2",
+        Patterns::Double(1),
+        "'cpdi' only: when a point's domain has a half edge longer than "
+        "this many times the half side of the square (cube) of the same "
+        "volume, it is reset to that square, turned by the domain's "
+        "rotation. Large flows stretch domains into needles many cells "
+        "long otherwise.");
     }
     prm.leave_subsection();
   }
@@ -34,6 +43,7 @@ namespace MPM
     weights = prm.get("Particle-grid weights") == "cpdi" ?
                 WeightFunctions::cpdi :
                 WeightFunctions::linear;
+    stretch_limit = prm.get_double("CPDI stretch limit");
     prm.leave_subsection();
   }
 
@@ -59,6 +69,39 @@ namespace MPM
     const double det = determinant(jacobian);
     const double s   = std::pow(volume / (std::pow(2., dim) * det), 1. / dim);
     return s * jacobian;
+  }
+
+
+  template <int dim>
+  Tensor<2, dim>
+  PointDomains<dim>::deformed_domain(const Tensor<2, dim> &R,
+                                     const Tensor<2, dim> &dt_grad_v) const
+  {
+    const Tensor<2, dim> deformed = R + dt_grad_v * R;
+    const double         det      = determinant(deformed);
+    const double         side2    = std::pow(std::abs(det), 2. / dim);
+    double               longest2 = 0;
+    for (unsigned int b = 0; b < dim; ++b)
+      {
+        double length2 = 0;
+        for (unsigned int a = 0; a < dim; ++a)
+          length2 += deformed[a][b] * deformed[a][b];
+        longest2 = std::max(longest2, length2);
+      }
+    if (!(det > 0) || longest2 <= stretch_limit * stretch_limit * side2)
+      return deformed;
+    // The rotation of the polar decomposition by Newton's iteration
+    // Q <- (Q + Q^{-T}) / 2, which converges quadratically from R.
+    Tensor<2, dim> Q = deformed;
+    for (unsigned int i = 0; i < 50; ++i)
+      {
+        const Tensor<2, dim> next = 0.5 * (Q + transpose(invert(Q)));
+        const bool converged = (next - Q).norm_square() < 1e-28 * dim;
+        Q                    = next;
+        if (converged)
+          break;
+      }
+    return std::sqrt(side2) * Q;
   }
 
 
