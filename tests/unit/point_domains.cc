@@ -1,0 +1,152 @@
+// CPDI's domain arithmetic (PointDomains): for parallelogram, general
+// (one corner pulled in, as at a boundary) and 3D domains, the corner
+// weights alpha_c sum to 1 and are 2^-dim on parallelepipeds, the beta_c sum
+// to 0 and reproduce the identity, sum_c beta_c (x) x_c = I (so a linear
+// velocity field gets its exact gradient), and the domain's volume is
+// 2^dim det R. A domain stretched beyond the limit is reset to a square of
+// the same volume with the same rotation; an inverted one is refused.
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <mpm/transfer/point_domains.h>
+
+#include "unit_test_tools.h"
+
+#include <cmath>
+#include <iostream>
+
+using namespace dealii;
+using namespace MPM;
+using UnitTest::check;
+using UnitTest::flush_to_zero;
+
+template <int dim>
+void
+check_domain(const std::string                                      &name,
+             const std::array<Point<dim>, PointDomains<dim>::n_corners> &x,
+             const bool parallelepiped)
+{
+  std::cout << name << ":\n";
+  std::array<double, PointDomains<dim>::n_corners>         alpha;
+  std::array<Tensor<1, dim>, PointDomains<dim>::n_corners> beta;
+  const bool ok = PointDomains<dim>::corner_weights(x, alpha, beta);
+  check(ok, "corner weights computed");
+  double         sum_alpha = 0, alpha_error = 0;
+  Tensor<1, dim> sum_beta;
+  Tensor<2, dim> identity;
+  for (unsigned int c = 0; c < x.size(); ++c)
+    {
+      sum_alpha += alpha[c];
+      sum_beta += beta[c];
+      identity += outer_product(beta[c], x[c]);
+      alpha_error = std::max(alpha_error,
+                             std::abs(alpha[c] - 1. / x.size()));
+    }
+  std::cout << "    alpha:";
+  for (const double a : alpha)
+    std::cout << ' ' << flush_to_zero(a);
+  std::cout << "\n    |sum alpha - 1| = " << flush_to_zero(sum_alpha - 1)
+            << ", |sum beta| = " << flush_to_zero(sum_beta.norm())
+            << ", |sum beta x - I| = "
+            << flush_to_zero(
+                 (identity - Tensor<2, dim>(unit_symmetric_tensor<dim>())).norm())
+            << '\n';
+  check(std::abs(sum_alpha - 1) < 1e-12, "alpha sums to 1");
+  check(sum_beta.norm() < 1e-12, "beta sums to 0");
+  check((identity - Tensor<2, dim>(unit_symmetric_tensor<dim>())).norm() < 1e-12,
+        "sum_c beta_c (x) x_c = I");
+  if (parallelepiped)
+    check(alpha_error < 1e-12, "alpha = 2^-dim on a parallelepiped");
+}
+
+
+int
+main()
+{
+  std::cout.precision(6);
+  {
+    // A sheared, rotated parallelogram about x_p.
+    Tensor<2, 2> R;
+    R[0][0] = 0.3, R[0][1] = 0.1, R[1][0] = -0.05, R[1][1] = 0.2;
+    const Point<2>               x_p(1.5, -0.7);
+    std::array<Point<2>, 4>      x;
+    for (unsigned int c = 0; c < 4; ++c)
+      x[c] = x_p + PointDomains<2>::corner_offset(R, c);
+    check_domain<2>("parallelogram", x, true);
+    // One corner pulled halfway in (a corner outside the patch).
+    x[3] = x_p + 0.5 * PointDomains<2>::corner_offset(R, 3);
+    check_domain<2>("parallelogram with corner 3 pulled in", x, false);
+    // Two corners pulled in differently.
+    x[1] = x_p + 0.125 * PointDomains<2>::corner_offset(R, 1);
+    check_domain<2>("and corner 1 pulled in further", x, false);
+    // Inverted: refused.
+    std::swap(x[1], x[2]);
+    std::array<double, 4>       alpha;
+    std::array<Tensor<1, 2>, 4> beta;
+    std::cout << "inverted domain:\n";
+    check(!PointDomains<2>::corner_weights(x, alpha, beta),
+          "an inverted domain is refused");
+  }
+  {
+    Tensor<2, 3> R;
+    R[0][0] = 0.3, R[0][1] = 0.1, R[1][1] = 0.2, R[2][0] = 0.05,
+    R[2][2] = 0.25, R[1][2] = -0.04;
+    const Point<3>          x_p(0.2, 0.4, -1);
+    std::array<Point<3>, 8> x;
+    for (unsigned int c = 0; c < 8; ++c)
+      x[c] = x_p + PointDomains<3>::corner_offset(R, c);
+    check_domain<3>("parallelepiped (3D)", x, true);
+    x[5] = x_p + 0.5 * PointDomains<3>::corner_offset(R, 5);
+    check_domain<3>("parallelepiped with corner 5 pulled in (3D)", x, false);
+  }
+  {
+    std::cout << "initial domain and deformation:\n";
+    Tensor<2, 2> J;
+    J[0][0] = 0.1, J[0][1] = 0.02, J[1][0] = 0.01, J[1][1] = 0.08;
+    const double       V = 1.3e-3;
+    const Tensor<2, 2> R = PointDomains<2>::initial_domain(J, V);
+    std::cout << "    4 det R / V - 1 = "
+              << flush_to_zero(4 * determinant(R) / V - 1) << '\n';
+    check(std::abs(4 * determinant(R) / V - 1) < 1e-12,
+          "initial domain has the point's volume");
+    check((R / R.norm() - J / J.norm()).norm() < 1e-12,
+          "initial domain is aligned with the cell");
+
+    ParameterHandler prm;
+    PointDomains<2>::declare_parameters(prm);
+    prm.enter_subsection("Transfer");
+    prm.set("Particle-grid weights", "cpdi");
+    prm.set("CPDI stretch limit", "2");
+    prm.leave_subsection();
+    PointDomains<2> domains;
+    domains.parse_parameters(prm);
+
+    // A small deformation: (I + dt grad v) R.
+    Tensor<2, 2> dt_grad_v;
+    dt_grad_v[0][1] = 0.1;
+    const Tensor<2, 2> small = domains.deformed_domain(R, dt_grad_v);
+    check((small - (R + dt_grad_v * R)).norm() < 1e-15 * R.norm(),
+          "a small deformation is applied as is");
+    // A large stretch of a rotated square: reset to the square of the
+    // same area with the same rotation.
+    const double theta = 0.4;
+    Tensor<2, 2> Q;
+    Q[0][0] = std::cos(theta), Q[0][1] = -std::sin(theta);
+    Q[1][0] = std::sin(theta), Q[1][1] = std::cos(theta);
+    const Tensor<2, 2> square = 0.01 * Q;
+    Tensor<2, 2>       stretch;
+    stretch[0][0] = 4, stretch[1][1] = 0.25 - 1;
+    stretch[0][0] -= 1;
+    // (I + stretch) = diag(4, 1/4) in the rotated frame: area kept.
+    const Tensor<2, 2> dt_grad = Q * stretch * transpose(Q);
+    const Tensor<2, 2> reset   = domains.deformed_domain(square, dt_grad);
+    std::cout << "    reset domain / (0.01 Q) - 1: "
+              << flush_to_zero((reset - square).norm() / square.norm())
+              << '\n';
+    check((reset - square).norm() < 1e-10 * square.norm(),
+          "a domain stretched 16:1 is reset to the square of its area, "
+          "same rotation");
+  }
+  return UnitTest::summary();
+}
