@@ -137,38 +137,66 @@ namespace MPM
                 PointDomains<dim>::write(R, props + domain_slot);
               }
             const Point<dim> x_p = point->get_location();
-            std::array<Point<dim>, n_corners> x;
+            std::array<Point<dim>, n_corners>   x;
             std::array<CellIterator, n_corners> corner_cell;
             std::array<Point<dim>, n_corners>   xi;
-            for (unsigned int c = 0; c < n_corners; ++c)
+            // Whether every corner of the domain scaled by s about x_p
+            // lies in the patch (and where).
+            const auto locate_corners = [&](const double s) {
+              for (unsigned int c = 0; c < n_corners; ++c)
+                {
+                  x[c] =
+                    x_p + s * PointDomains<dim>::corner_offset(R, c);
+                  bool found = false;
+                  for (const auto &candidate : patch)
+                    if (cell_contains<dim>(grid.cell_vertices(candidate),
+                                           dim == 2 ?
+                                             &grid.bilinear_map(candidate) :
+                                             nullptr,
+                                           x[c],
+                                           xi[c]))
+                      {
+                        corner_cell[c] = candidate;
+                        found          = true;
+                        break;
+                      }
+                  if (!found)
+                    return false;
+                }
+              return true;
+            };
+            if (!locate_corners(1.))
               {
-                const Tensor<1, dim> offset =
-                  PointDomains<dim>::corner_offset(R, c);
-                bool found = false;
-                // Outside the patch (beyond the mesh, or the domain
-                // stretched past the neighbours): halve the offset.
-                for (double s = 1; !found && s > 1. / 1024; s *= 0.5)
+                // A corner outside the patch (beyond the mesh or a wall,
+                // or past the neighbours): shrink the whole domain about
+                // the point, to the largest scale found by bisection, so
+                // that it stays centred on the point (a point next to a
+                // wall then moves with the wall's nodes, as with linear
+                // weights, instead of being pulled through it by its far
+                // corners).
+                double inside = 0, outside = 1;
+                for (unsigned int i = 0; i < 10; ++i)
                   {
-                    x[c] = x_p + s * offset;
-                    for (const auto &candidate : patch)
-                      if (cell_contains<dim>(
-                            grid.cell_vertices(candidate),
-                            dim == 2 ? &grid.bilinear_map(candidate) :
-                                       nullptr,
-                            x[c],
-                            xi[c]))
-                        {
-                          corner_cell[c] = candidate;
-                          found          = true;
-                          break;
-                        }
+                    const double s = 0.5 * (inside + outside);
+                    (locate_corners(s) ? inside : outside) = s;
                   }
-                if (!found)
-                  {
-                    x[c]           = x_p;
-                    corner_cell[c] = cell;
-                    xi[c]          = point->get_reference_location();
-                  }
+                if (inside == 0 || !locate_corners(inside))
+                  // The point sits on the patch's edge: a domain a
+                  // millionth of its size in its own cell, its corners'
+                  // reference coordinates extrapolated if they are just
+                  // outside (the limit is the linear weights).
+                  for (unsigned int c = 0; c < n_corners; ++c)
+                    {
+                      x[c] =
+                        x_p + 1e-6 * PointDomains<dim>::corner_offset(R, c);
+                      corner_cell[c] = cell;
+                      if constexpr (dim == 2)
+                        xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
+                      else
+                        xi[c] = inverse_map_newton<dim>(
+                                  grid.cell_vertices(cell), x[c])
+                                  .xi;
+                    }
               }
             std::array<double, n_corners>         alpha;
             std::array<Tensor<1, dim>, n_corners> beta;
