@@ -135,11 +135,32 @@ namespace MPM
                                      point->get_reference_location()),
                   props[Layout::volume]);
                 PointDomains<dim>::write(R, props + domain_slot);
+                props[domain_slot + dim * dim] = 1;
               }
             const Point<dim> x_p = point->get_location();
             std::array<Point<dim>, n_corners>   x;
             std::array<CellIterator, n_corners> corner_cell;
             std::array<Point<dim>, n_corners>   xi;
+            // Whether @p y lies within 2 % of the reference cell of
+            // @p candidate; if so @p y is moved onto the cell (its
+            // reference coordinates clamped to [0, 1]) and @p eta are they,
+            // with corner_cell set.
+            const auto nearly_contains = [&](const CellIterator &candidate,
+                                             Point<dim>         &y,
+                                             Point<dim>         &eta) {
+              const auto &vertices = grid.cell_vertices(candidate);
+              InverseMappingResult<dim> result;
+              if constexpr (dim == 2)
+                result = grid.bilinear_map(candidate).inverse(y);
+              else
+                result = inverse_map_newton<dim>(vertices, y);
+              if (!result.success || !inside_unit_cell(result.xi, 0.02))
+                return false;
+              for (unsigned int d = 0; d < dim; ++d)
+                eta[d] = std::min(1., std::max(0., result.xi[d]));
+              y = map_unit_to_real<dim>(vertices, eta);
+              return true;
+            };
             // Whether every corner of the domain scaled by s about x_p
             // lies in the patch (and where).
             const auto locate_corners = [&](const double s) {
@@ -160,43 +181,64 @@ namespace MPM
                         found          = true;
                         break;
                       }
+                  // Just outside every cell of the patch (a domain built
+                  // from the Jacobian at the point pokes out of a
+                  // distorted boundary cell by O(distortion * size^2)):
+                  // moved onto the nearest cell's boundary.
+                  for (unsigned int i = 0; !found && i < patch.size(); ++i)
+                    if (nearly_contains(patch[i], x[c], xi[c]))
+                      {
+                        corner_cell[c] = patch[i];
+                        found          = true;
+                      }
                   if (!found)
                     return false;
                 }
               return true;
             };
-            if (!locate_corners(1.))
+            // The scale s of the domain about the point: 1 unless a corner
+            // left the patch (beyond the mesh or a wall, or past the
+            // neighbours). Then the whole domain is shrunk about the point,
+            // so that it stays centred on it: a point next to a wall moves
+            // with the wall's nodes, as with linear weights, instead of
+            // being pulled through it by its far corners. The scale is kept
+            // from step to step (the last slot) and tried to be doubled
+            // every 8th step, so a point resting against a wall pays for
+            // one try most steps, not a bisection.
+            double &scale = props[domain_slot + dim * dim];
+            const double grown =
+              step % 8 == 0 ? std::min(1., 2 * scale) : scale;
+            if (locate_corners(grown))
+              scale = grown;
+            else if (!(scale < grown && locate_corners(scale)))
               {
-                // A corner outside the patch (beyond the mesh or a wall,
-                // or past the neighbours): shrink the whole domain about
-                // the point, to the largest scale found by bisection, so
-                // that it stays centred on the point (a point next to a
-                // wall then moves with the wall's nodes, as with linear
-                // weights, instead of being pulled through it by its far
-                // corners).
-                double inside = 0, outside = 1;
+                double inside = 0, outside = std::min(scale, grown);
                 for (unsigned int i = 0; i < 10; ++i)
                   {
                     const double s = 0.5 * (inside + outside);
                     (locate_corners(s) ? inside : outside) = s;
                   }
+                scale = inside;
                 if (inside == 0 || !locate_corners(inside))
-                  // The point sits on the patch's edge: a domain a
-                  // millionth of its size in its own cell, its corners'
-                  // reference coordinates extrapolated if they are just
-                  // outside (the limit is the linear weights).
-                  for (unsigned int c = 0; c < n_corners; ++c)
-                    {
-                      x[c] =
-                        x_p + 1e-6 * PointDomains<dim>::corner_offset(R, c);
-                      corner_cell[c] = cell;
-                      if constexpr (dim == 2)
-                        xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
-                      else
-                        xi[c] = inverse_map_newton<dim>(
-                                  grid.cell_vertices(cell), x[c])
-                                  .xi;
-                    }
+                  {
+                    // The point sits on the patch's edge: a domain a
+                    // millionth of its size in its own cell, its corners'
+                    // reference coordinates extrapolated if they are just
+                    // outside (the limit is the linear weights).
+                    scale = 1e-6;
+                    for (unsigned int c = 0; c < n_corners; ++c)
+                      {
+                        x[c] = x_p + scale * PointDomains<dim>::corner_offset(
+                                               R, c);
+                        corner_cell[c] = cell;
+                        if constexpr (dim == 2)
+                          xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
+                        else
+                          xi[c] = inverse_map_newton<dim>(
+                                    grid.cell_vertices(cell), x[c])
+                                    .xi;
+                      }
+                  }
               }
             std::array<double, n_corners>         alpha;
             std::array<Tensor<1, dim>, n_corners> beta;

@@ -57,6 +57,8 @@ namespace MPM
       for (unsigned int a = 0; a < dim; ++a)
         for (unsigned int b = 0; b < dim; ++b)
           names.push_back(std::string("domain_") + "xyz"[a] + "xyz"[b]);
+    if (enabled())
+      names.emplace_back("domain_scale");
     return names;
   }
 

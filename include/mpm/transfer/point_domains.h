@@ -60,10 +60,14 @@ namespace MPM
    * point's own cell or one sharing a vertex with it (the same set on one
    * rank or many: every such cell is owned or a ghost). A corner outside
    * that patch (outside the mesh, beyond a wall, or a domain stretched over
-   * more than a cell) is moved towards the point's centre, halving its
-   * offset until it is inside; the stored domain is not changed. The
-   * weights then come from a smaller domain on that side, as if the
-   * material were cut at the boundary.
+   * more than a cell) makes the Simulator shrink the whole domain about the
+   * point (x_p + s R s', the largest s in (0, 1] found by bisection, kept
+   * in the point's last slot, doubled if possible every 8th step), so it
+   * stays centred on the point: a point at a wall tends to the linear
+   * weights there and moves with the wall's nodes. A corner within 2 % of
+   * a cell's reference square is moved onto the cell instead (domains
+   * built from the Jacobian at a point poke out of a distorted boundary
+   * cell by a little).
    */
   template <int dim>
   class PointDomains
@@ -90,11 +94,13 @@ namespace MPM
       return weights == WeightFunctions::cpdi;
     }
 
-    /// Property slots per point (R, row-major) when enabled.
+    /// Property slots per point when enabled: R (row-major), then the
+    /// scale by which the domain is shrunk at a boundary (see the class
+    /// documentation).
     unsigned int
     n_point_properties() const
     {
-      return enabled() ? dim * dim : 0;
+      return enabled() ? dim * dim + 1 : 0;
     }
 
     std::vector<std::string>

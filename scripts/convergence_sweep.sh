@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# Convergence under mesh refinement, linear against CPDI weights (one core,
+# Release; doc/convergence.md):
+#  1. the vibrating bar (prm/vibrating_bar.prm, 2 x 2 points per cell) with
+#     n = 1, 2, 4, 8, 16 cells per metre, on the regular mesh and with every
+#     interior vertex moved by up to 30 % of its shortest edge: the largest
+#     centre-of-mass velocity error, the period error, whether it ran to the
+#     end, and the particle-steps per second (the cost of each weight);
+#  2. with the argument 'collapse': the a = 2 granular column collapse
+#     (prm/column_collapse.prm as shipped) on 5, 2.5 and 1.25 mm meshes
+#     (about 1.5 hours; 'collapse-quick' stops at 2.5 mm).
+# Writes doc/convergence_bar.csv (and doc/convergence_collapse.csv) and
+# doc/convergence.png.
+# Usage: scripts/convergence_sweep.sh [collapse|collapse-quick]
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+mpm_setup Release
+out="output-convergence"
+mkdir -p "$out"
+
+# The numbers of a finished run: field "name: value" of the report, and the
+# 'Done:' line of the log.
+report_value() { grep "^$2" "$1" 2>/dev/null | sed -E 's/.*: *//; s/ .*//' || true; }
+done_field() {  # log, awk program on the Done line
+  grep '^Done:' "$1" | awk "$2" || true
+}
+
+csv="$MPM_ROOT/doc/convergence_bar.csv"
+echo "weights,distortion,n,points,max_vcm_error,period_error,status,steps,step_wall_s,particle_steps_per_s" > "$csv"
+for distortion in 0 0.3; do
+  for n in 1 2 4 8 16; do
+    for weights in linear cpdi; do
+      name="bar-$weights-d$distortion-n$n"
+      status=ok
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/vibrating_bar.prm" \
+        --set "Mesh/Generator arguments={$((26 * n)), $n} : 0, 0 : 26, 1 : true" \
+        --set "Mesh/Random vertex perturbation=$distortion" \
+        --set "Transfer/Particle-grid weights=$weights" \
+        --set "Output/Output interval=100" \
+        --set "Output/Write particles=false" \
+        --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1 || status=unstable
+      report="$out/$name/report.txt"
+      if [ "$status" = ok ]; then
+        printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$weights" "$distortion" "$n" \
+          "$(done_field "$out/$name.log" '{print $4}')" \
+          "$(report_value "$report" 'max |v_cm error|')" \
+          "$(report_value "$report" 'period relative error')" "$status" \
+          "$(done_field "$out/$name.log" '{print $2}')" \
+          "$(done_field "$out/$name.log" '{s = $0; sub(/.*\(steps /, "", s); sub(/ s\).*/, "", s); print s}')" \
+          "$(done_field "$out/$name.log" '{s = $0; sub(/.* s\), /, "", s); sub(/ particle-steps.*/, "", s); print s}')" | tee -a "$csv"
+      else
+        step=$(grep -o 'unstable by step [0-9]*' "$out/$name.log" | awk '{print $4}')
+        printf "%s,%s,%s,,,,unstable at step %s,,,\n" "$weights" "$distortion" "$n" "$step" | tee -a "$csv"
+      fi
+    done
+  done
+done
+
+if [ "${1:-}" = collapse ] || [ "${1:-}" = collapse-quick ]; then
+  meshes="0.005 0.0025 0.00125"
+  [ "$1" = collapse-quick ] && meshes="0.005 0.0025"
+  ccsv="$MPM_ROOT/doc/convergence_collapse.csv"
+  echo "weights,h,runout,final_height_over_L0,stop_time_s,status,points,step_wall_s" > "$ccsv"
+  L0=0.1; a=2
+  for h in $meshes; do
+    for weights in linear cpdi; do
+      read -r H0 W H nx ny < <(awk -v a="$a" -v L="$L0" -v h="$h" 'BEGIN {
+        H0 = a * L; W = L * (3 + 2 * a); H = H0 + 0.05
+        printf "%g %g %g %d %d\n", H0, W, H, W / h + 0.5, H / h + 0.5 }')
+      name="collapse-$weights-h$h"
+      status=ok
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/column_collapse.prm" \
+        --set "Mesh/Generator arguments={$nx, $ny} : 0, 0 : $W, $H : true" \
+        --set "Transfer/Particle-grid weights=$weights" \
+        --set "Output/Write particles=false" \
+        --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1 || status=failed
+      report="$out/$name/report.txt"
+      stop=$(grep -E "^mean speed below" "$report" 2>/dev/null | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
+      printf "%s,%s,%s,%s,%s,%s,%s,%s\n" "$weights" "$h" \
+        "$(report_value "$report" 'runout')" \
+        "$(report_value "$report" 'final height H_inf/L0')" "${stop:-}" "$status" \
+        "$(done_field "$out/$name.log" '{print $4}')" \
+        "$(done_field "$out/$name.log" '{s = $0; sub(/.*\(steps /, "", s); sub(/ s\).*/, "", s); print s}')" | tee -a "$ccsv"
+    done
+  done
+fi
+/usr/bin/python3 "$MPM_ROOT/scripts/plot_convergence.py" "$csv" "$MPM_ROOT/doc/convergence.png"
