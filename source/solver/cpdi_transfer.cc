@@ -6,6 +6,7 @@
 // its per-cell layout.
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/tensor.h>
 
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/material_points/property_layout.h>
@@ -19,6 +20,34 @@ namespace MPM
 {
   namespace
   {
+    /// Whether @p x lies in the bounding box of @p vertices enlarged by
+    /// @p margin times its size: the cheap rejection before an inverse
+    /// map (most candidate cells of a corner do not contain it, and the
+    /// inverse map of a non-affine cell is dearest for points outside).
+    template <int dim>
+    bool
+    in_bounding_box(
+      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
+                       &vertices,
+      const Point<dim> &x,
+      const double      margin)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          double lo = vertices[0][d], hi = lo;
+          for (unsigned int v = 1; v < vertices.size(); ++v)
+            {
+              lo = std::min(lo, vertices[v][d]);
+              hi = std::max(hi, vertices[v][d]);
+            }
+          const double slack = margin * (hi - lo) + 1e-12 * (hi - lo);
+          if (x[d] < lo - slack || x[d] > hi + slack)
+            return false;
+        }
+      return true;
+    }
+
+
     /// Whether the cell with @p vertices (and, in 2D, @p map) contains
     /// @p x, and its reference coordinates @p xi there.
     template <int dim>
@@ -32,12 +61,31 @@ namespace MPM
     {
       if constexpr (dim == 2)
         {
-          (void)vertices;
+          // The bilinear cell is the convex quadrilateral of its straight
+          // edges: outside one edge's line (by more than round-off) is
+          // outside the cell, four cross products instead of the inverse
+          // map, which is dearest for the points outside a non-affine cell.
+          const Point<2> *v[4] = {&vertices[0],
+                                  &vertices[1],
+                                  &vertices[3],
+                                  &vertices[2]};
+          const Tensor<1, 2> d1 = *v[2] - *v[0], d2 = *v[3] - *v[1];
+          const double orientation = d1[0] * d2[1] - d1[1] * d2[0] > 0 ? 1. : -1.;
+          for (unsigned int e = 0; e < 4; ++e)
+            {
+              const Tensor<1, 2> edge = *v[(e + 1) % 4] - *v[e];
+              const double side = orientation * (edge[0] * (x[1] - (*v[e])[1]) -
+                                                 edge[1] * (x[0] - (*v[e])[0]));
+              if (side < -1e-10 * edge.norm_square())
+                return false;
+            }
           return map->contains(x, xi);
         }
       else
         {
           (void)map;
+          if (!in_bounding_box<dim>(vertices, x, 0.))
+            return false;
           const auto result = inverse_map_newton<dim>(vertices, x);
           if (!result.success || !inside_unit_cell(result.xi))
             return false;
@@ -119,6 +167,19 @@ namespace MPM
         const CellIterator cell   = it->get_surrounding_cell();
         const auto         points = particle_handler.particles_in_cell(cell);
         const auto        &patch  = cell_patches[cell->active_cell_index()];
+        // The patch's geometry, looked up once for the cell's points, and
+        // where each corner was found for the previous point (the points
+        // of a cell are alike: tried first).
+        std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
+        std::array<const BilinearCellMap *, 64>                   map_of;
+        AssertThrow(patch.size() <= 64, ExcInternalError());
+        for (unsigned int i = 0; i < patch.size(); ++i)
+          {
+            vertices_of[i] = &grid.cell_vertices(patch[i]);
+            map_of[i] = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
+          }
+        std::array<unsigned int, n_corners> last_found;
+        last_found.fill(0);
         for (auto point = points.begin(); point != points.end(); ++point, ++p)
           {
             double *props       = point->get_properties().data();
@@ -141,6 +202,8 @@ namespace MPM
             std::array<Point<dim>, n_corners>   x;
             std::array<CellIterator, n_corners> corner_cell;
             std::array<Point<dim>, n_corners>   xi;
+            // Whether the corners are still those of x_p + s R.
+            bool parallelepiped = true;
             // Whether @p y lies within 2 % of the reference cell of
             // @p candidate; if so @p y is moved onto the cell (its
             // reference coordinates clamped to [0, 1]) and @p eta are they,
@@ -149,6 +212,8 @@ namespace MPM
                                              Point<dim>         &y,
                                              Point<dim>         &eta) {
               const auto &vertices = grid.cell_vertices(candidate);
+              if (!in_bounding_box<dim>(vertices, y, 0.05))
+                return false;
               InverseMappingResult<dim> result;
               if constexpr (dim == 2)
                 result = grid.bilinear_map(candidate).inverse(y);
@@ -158,29 +223,38 @@ namespace MPM
                 return false;
               for (unsigned int d = 0; d < dim; ++d)
                 eta[d] = std::min(1., std::max(0., result.xi[d]));
-              y = map_unit_to_real<dim>(vertices, eta);
+              y                  = map_unit_to_real<dim>(vertices, eta);
+              parallelepiped = false;
               return true;
             };
             // Whether every corner of the domain scaled by s about x_p
             // lies in the patch (and where).
             const auto locate_corners = [&](const double s) {
+              parallelepiped = true;
               for (unsigned int c = 0; c < n_corners; ++c)
                 {
                   x[c] =
                     x_p + s * PointDomains<dim>::corner_offset(R, c);
                   bool found = false;
-                  for (const auto &candidate : patch)
-                    if (cell_contains<dim>(grid.cell_vertices(candidate),
-                                           dim == 2 ?
-                                             &grid.bilinear_map(candidate) :
-                                             nullptr,
-                                           x[c],
-                                           xi[c]))
-                      {
-                        corner_cell[c] = candidate;
-                        found          = true;
-                        break;
-                      }
+                  for (unsigned int j = 0; j <= patch.size(); ++j)
+                    {
+                      // The previous point's cell of this corner first.
+                      const unsigned int i =
+                        j == 0 ? last_found[c] :
+                                 (j - 1 == last_found[c] ? 0 : j - 1);
+                      if (j > 0 && j - 1 == 0 && last_found[c] == 0)
+                        continue;
+                      if (cell_contains<dim>(*vertices_of[i],
+                                             map_of[i],
+                                             x[c],
+                                             xi[c]))
+                        {
+                          corner_cell[c] = patch[i];
+                          last_found[c]  = i;
+                          found          = true;
+                          break;
+                        }
+                    }
                   // Just outside every cell of the patch (a domain built
                   // from the Jacobian at the point pokes out of a
                   // distorted boundary cell by O(distortion * size^2)):
@@ -225,7 +299,8 @@ namespace MPM
                     // millionth of its size in its own cell, its corners'
                     // reference coordinates extrapolated if they are just
                     // outside (the limit is the linear weights).
-                    scale = 1e-6;
+                    scale          = 1e-6;
+                    parallelepiped = true;
                     for (unsigned int c = 0; c < n_corners; ++c)
                       {
                         x[c] = x_p + scale * PointDomains<dim>::corner_offset(
@@ -242,7 +317,11 @@ namespace MPM
               }
             std::array<double, n_corners>         alpha;
             std::array<Tensor<1, dim>, n_corners> beta;
-            if (!PointDomains<dim>::corner_weights(x, alpha, beta))
+            if (parallelepiped)
+              PointDomains<dim>::parallelepiped_weights(scale * R,
+                                                        alpha,
+                                                        beta);
+            else if (!PointDomains<dim>::corner_weights(x, alpha, beta))
               {
                 std::ostringstream s;
                 s << "The CPDI domain of material point " << point->get_id()

@@ -13,6 +13,7 @@
 
 #include "unit_test_tools.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -74,6 +75,19 @@ main()
     for (unsigned int c = 0; c < 4; ++c)
       x[c] = x_p + PointDomains<2>::corner_offset(R, c);
     check_domain<2>("parallelogram", x, true);
+    {
+      std::array<double, 4>       alpha, alpha_closed;
+      std::array<Tensor<1, 2>, 4> beta, beta_closed;
+      PointDomains<2>::corner_weights(x, alpha, beta);
+      PointDomains<2>::parallelepiped_weights(R, alpha_closed, beta_closed);
+      double difference = 0;
+      for (unsigned int c = 0; c < 4; ++c)
+        difference = std::max({difference,
+                               std::abs(alpha[c] - alpha_closed[c]),
+                               (beta[c] - beta_closed[c]).norm() * R.norm()});
+      check(difference < 1e-12,
+            "closed form for a parallelogram = quadrature");
+    }
     // One corner pulled halfway in (a corner outside the patch).
     x[3] = x_p + 0.5 * PointDomains<2>::corner_offset(R, 3);
     check_domain<2>("parallelogram with corner 3 pulled in", x, false);
@@ -97,6 +111,19 @@ main()
     for (unsigned int c = 0; c < 8; ++c)
       x[c] = x_p + PointDomains<3>::corner_offset(R, c);
     check_domain<3>("parallelepiped (3D)", x, true);
+    {
+      std::array<double, 8>       alpha, alpha_closed;
+      std::array<Tensor<1, 3>, 8> beta, beta_closed;
+      PointDomains<3>::corner_weights(x, alpha, beta);
+      PointDomains<3>::parallelepiped_weights(R, alpha_closed, beta_closed);
+      double difference = 0;
+      for (unsigned int c = 0; c < 8; ++c)
+        difference = std::max({difference,
+                               std::abs(alpha[c] - alpha_closed[c]),
+                               (beta[c] - beta_closed[c]).norm() * R.norm()});
+      check(difference < 1e-12,
+            "closed form for a parallelepiped (3D) = quadrature");
+    }
     x[5] = x_p + 0.5 * PointDomains<3>::corner_offset(R, 5);
     check_domain<3>("parallelepiped with corner 5 pulled in (3D)", x, false);
   }

@@ -159,6 +159,28 @@ namespace MPM
     deformed_domain(const Tensor<2, dim> &R,
                     const Tensor<2, dim> &dt_grad_v) const;
 
+    /**
+     * corner_weights() of the parallelepiped x_p + R s in closed form:
+     * alpha_c = 2^-dim, beta_c = R^{-T} s_c / 2^dim (s_c the corner's
+     * signs). The common case: the domain is only a parallelepiped's
+     * corners unless one was moved onto a cell.
+     */
+    static void
+    parallelepiped_weights(const Tensor<2, dim>                  &R,
+                           std::array<double, n_corners>         &alpha,
+                           std::array<Tensor<1, dim>, n_corners> &beta)
+    {
+      const Tensor<2, dim> inverse_transpose = transpose(invert(R));
+      for (unsigned int c = 0; c < n_corners; ++c)
+        {
+          alpha[c] = 1. / n_corners;
+          Tensor<1, dim> s;
+          for (unsigned int d = 0; d < dim; ++d)
+            s[d] = ((c >> d) & 1) ? 1. : -1.;
+          beta[c] = (inverse_transpose * s) / n_corners;
+        }
+    }
+
     /// Read R from a point's slots @p data.
     static Tensor<2, dim>
     read(const double *data)
