@@ -162,8 +162,10 @@ namespace MPM
     corners.reserve(n_points * n_corners);
 
     unsigned int p = 0;
+    point_cell_begin.clear();
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
+        point_cell_begin.push_back(p);
         const CellIterator cell   = it->get_surrounding_cell();
         const auto         points = particle_handler.particles_in_cell(cell);
         const auto        &patch  = cell_patches[cell->active_cell_index()];
@@ -335,6 +337,7 @@ namespace MPM
           }
         it = points.end();
       }
+    point_cell_begin.push_back(p);
 
     // Group the corners by cell (a counting sort in the order in which the
     // cells were first touched), so that each pass adds to a cell's nodes
@@ -588,6 +591,12 @@ namespace MPM
           }
       }
     const double dt = time_step;
+    if (time_stepping.average_volumetric_strain)
+      for (unsigned int g = 0; g + 1 < point_cell_begin.size(); ++g)
+        average_volumetric_part(point_properties.data() + point_cell_begin[g],
+                                point_sum_gradient.data() +
+                                  point_cell_begin[g],
+                                point_cell_begin[g + 1] - point_cell_begin[g]);
     for (unsigned int p = 0; p < n_points; ++p)
       {
         double              *props  = point_properties[p];

@@ -1098,29 +1098,78 @@ namespace MPM
     if (point_domains.enabled())
       return update_stress_cpdi(velocity);
     TimerOutput::Scope t(timer, "stress update");
-    unsigned int       k = 0;
-    for (const auto &cell : active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+    const bool average = time_stepping.average_volumetric_strain;
+    // sum_i v_i (x) grad N_i at a point of @p cell.
+    const auto velocity_gradient = [&velocity](const ActiveCell            &cell,
+                                               const Q1ShapeFunctions<dim> &sf) {
+      Tensor<2, dim> grad_v;
+      for (unsigned int i = 0; i < sf.value.size(); ++i)
         {
-          const auto    &sf = shape_functions[k];
-          Tensor<2, dim> grad_v;
-          for (unsigned int i = 0; i < sf.value.size(); ++i)
-            {
-              Tensor<1, dim> v;
-              for (unsigned int c = 0; c < dim; ++c)
-                v[c] = velocity.local_element(cell.dofs[i][c]);
-              grad_v += outer_product(v, sf.gradient[i]);
-            }
-          double *props = point_properties[k];
-          update_point_stress(props, grad_v);
-          // MUSL with APIC: the affine matrix is this velocity gradient
-          // (see VelocityTransfer::store_affine()).
-          if (set_affine)
-            VelocityTransfer<dim>::store_affine(sf,
-                                                vertex_offsets(cell, sf),
-                                                grad_v,
-                                                props + transfer_slot);
+          Tensor<1, dim> v;
+          for (unsigned int c = 0; c < dim; ++c)
+            v[c] = velocity.local_element(cell.dofs[i][c]);
+          grad_v += outer_product(v, sf.gradient[i]);
         }
+      return grad_v;
+    };
+    unsigned int k = 0;
+    for (const auto &cell : active_cells)
+      {
+        // With 'Volumetric strain averaging = cell', the cell's velocity
+        // gradients first, to average their traces.
+        if (average)
+          {
+            point_sum_gradient.resize(cell.n_points);
+            for (unsigned int q = 0; q < cell.n_points; ++q)
+              point_sum_gradient[q] =
+                velocity_gradient(cell, shape_functions[k + q]);
+            average_volumetric_part(point_properties.data() + k,
+                                    point_sum_gradient.data(),
+                                    cell.n_points);
+          }
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const auto          &sf     = shape_functions[k];
+            const Tensor<2, dim> grad_v = average ?
+                                            point_sum_gradient[q] :
+                                            velocity_gradient(cell, sf);
+            double *props = point_properties[k];
+            update_point_stress(props, grad_v);
+            // MUSL with APIC: the affine matrix is this velocity gradient
+            // (see VelocityTransfer::store_affine()).
+            if (set_affine)
+              VelocityTransfer<dim>::store_affine(sf,
+                                                  vertex_offsets(cell, sf),
+                                                  grad_v,
+                                                  props + transfer_slot);
+          }
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::average_volumetric_part(double *const  *props,
+                                          Tensor<2, dim> *grad_v,
+                                          const unsigned int n) const
+  {
+    using Layout   = PropertyLayout<dim>;
+    double volume  = 0, trace = 0;
+    for (unsigned int q = 0; q < n; ++q)
+      {
+        const double V = props[q][Layout::volume];
+        volume += V;
+        trace += V * dealii::trace(grad_v[q]);
+      }
+    if (!(volume > 0))
+      return;
+    const double mean = trace / volume;
+    for (unsigned int q = 0; q < n; ++q)
+      {
+        const double shift = (mean - dealii::trace(grad_v[q])) / dim;
+        for (unsigned int d = 0; d < dim; ++d)
+          grad_v[q][d][d] += shift;
+      }
   }
 
 

@@ -51,6 +51,16 @@ namespace MPM
                         "the direction of the nodal velocity. For quasi-"
                         "static problems (e.g. settling under gravity); 0 "
                         "for dynamics.");
+      prm.declare_entry(
+        "Volumetric strain averaging",
+        "none",
+        Patterns::Selection("none|cell"),
+        "'cell': each point's volumetric strain rate (the trace of its "
+        "velocity gradient) is replaced by the volume-weighted mean over "
+        "the points of its cell before the stress and volume update, the "
+        "deviatoric part kept (an F-bar-type anti-locking for plastically "
+        "incompressible flow with several points per cell; "
+        "doc/convergence.md). 'none': each point's own.");
       prm.declare_entry("Gravity",
                         dim == 2 ? "0, -9.81" : "0, 0, -9.81",
                         Patterns::List(Patterns::Double(), dim, dim),
@@ -76,6 +86,8 @@ namespace MPM
                s == "USL" ? UpdateScheme::usl :
                             UpdateScheme::musl;
       local_damping = prm.get_double("Local damping");
+      average_volumetric_strain =
+        prm.get("Volumetric strain averaging") == "cell";
       const auto g  = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Gravity")));
       for (unsigned int d = 0; d < dim; ++d)

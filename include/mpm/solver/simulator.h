@@ -374,6 +374,16 @@ namespace MPM
     void
     set_max_point_speed(const double v_max2);
 
+    /**
+     * Replace the trace of the velocity gradients @p grad_v of @p n points
+     * (properties @p props) by their volume-weighted mean, keeping the
+     * deviatoric parts ('Time stepping/Volumetric strain averaging').
+     */
+    void
+    average_volumetric_part(double *const     *props,
+                            Tensor<2, dim>     *grad_v,
+                            const unsigned int n) const;
+
     /// One point's strain, stress and volume from its velocity gradient.
     void
     update_point_stress(double *props, const Tensor<2, dim> &grad_v);
@@ -485,6 +495,9 @@ namespace MPM
     std::vector<const BilinearCellMap *> point_cell_map;
     std::vector<Tensor<1, dim>>          point_sum_a, point_sum_b;
     std::vector<Tensor<2, dim>>          point_sum_gradient;
+    /// CPDI: the first point (index into point_properties) of each cell
+    /// holding points, and one past the last.
+    std::vector<unsigned int>            point_cell_begin;
     /// CPDI: the cells a corner of a point in each locally owned cell may
     /// lie in (by active_cell_index(); the cell itself first).
     std::vector<std::vector<typename Triangulation<dim>::active_cell_iterator>>

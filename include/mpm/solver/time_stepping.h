@@ -44,6 +44,9 @@ namespace MPM
     double         maximum_time_step = 1e100;
     UpdateScheme   scheme         = UpdateScheme::usf;
     double         local_damping  = 0;
+    /// Replace each point's volumetric strain rate by the volume-weighted
+    /// mean over the points of its cell (anti-locking).
+    bool           average_volumetric_strain = false;
     Tensor<1, dim> gravity;
   };
 } // namespace MPM
