@@ -95,32 +95,6 @@ namespace MPM
     }
 
 
-    /// The Jacobian d x / d xi of the cell with @p vertices at @p xi.
-    template <int dim>
-    Tensor<2, dim>
-    cell_jacobian(
-      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
-                       &vertices,
-      const Point<dim> &xi)
-    {
-      Tensor<2, dim> J;
-      for (unsigned int i = 0; i < vertices.size(); ++i)
-        {
-          Tensor<1, dim> gradient;
-          for (unsigned int e = 0; e < dim; ++e)
-            {
-              double g = ((i >> e) & 1) ? 1. : -1.;
-              for (unsigned int d = 0; d < dim; ++d)
-                if (d != e)
-                  g *= ((i >> d) & 1) ? xi[d] : 1. - xi[d];
-              gradient[e] = g;
-            }
-          J += outer_product(vertices[i] - vertices[0], gradient);
-        }
-      return J;
-    }
-
-
     /// The dim x dim part of a point's stress.
     template <int dim>
     Tensor<2, dim>
@@ -190,21 +164,22 @@ namespace MPM
               dim == 2 ? &grid.bilinear_map(cell) : nullptr;
             // A point without a domain yet (new, or read from a file) gets
             // the one of PointDomains::initial_domain().
-            Tensor<2, dim> R = PointDomains<dim>::read(props + domain_slot);
-            if (R.norm_square() == 0)
+            auto D = PointDomains<dim>::read(props + domain_slot);
+            if (D[0].norm_square() == 0)
               {
-                R = PointDomains<dim>::initial_domain(
-                  cell_jacobian<dim>(grid.cell_vertices(cell),
-                                     point->get_reference_location()),
+                D = PointDomains<dim>::initial_domain(
+                  grid.cell_vertices(cell),
+                  point->get_reference_location(),
                   props[Layout::volume]);
-                PointDomains<dim>::write(R, props + domain_slot);
-                props[domain_slot + dim * dim] = 1;
+                PointDomains<dim>::write(D, props + domain_slot);
+                props[domain_slot + PointDomains<dim>::n_corners * dim] = 1;
               }
             const Point<dim> x_p = point->get_location();
             std::array<Point<dim>, n_corners>   x;
             std::array<CellIterator, n_corners> corner_cell;
             std::array<Point<dim>, n_corners>   xi;
-            // Whether the corners are still those of x_p + s R.
+            // Whether the corners are still x_p + s D_c (none moved onto a
+            // cell).
             bool parallelepiped = true;
             // Whether @p y lies within 2 % of the reference cell of
             // @p candidate; if so @p y is moved onto the cell (its
@@ -236,7 +211,7 @@ namespace MPM
               for (unsigned int c = 0; c < n_corners; ++c)
                 {
                   x[c] =
-                    x_p + s * PointDomains<dim>::corner_offset(R, c);
+                    x_p + s * D[c];
                   bool found = false;
                   for (unsigned int j = 0; j <= patch.size(); ++j)
                     {
@@ -281,7 +256,7 @@ namespace MPM
             // from step to step (the last slot) and tried to be doubled
             // every 8th step, so a point resting against a wall pays for
             // one try most steps, not a bisection.
-            double &scale = props[domain_slot + dim * dim];
+            double &scale = props[domain_slot + PointDomains<dim>::n_corners * dim];
             const double grown =
               step % 8 == 0 ? std::min(1., 2 * scale) : scale;
             if (locate_corners(grown))
@@ -305,8 +280,7 @@ namespace MPM
                     parallelepiped = true;
                     for (unsigned int c = 0; c < n_corners; ++c)
                       {
-                        x[c] = x_p + scale * PointDomains<dim>::corner_offset(
-                                               R, c);
+                        x[c] = x_p + scale * D[c];
                         corner_cell[c] = cell;
                         if constexpr (dim == 2)
                           xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
@@ -319,7 +293,8 @@ namespace MPM
               }
             std::array<double, n_corners>         alpha;
             std::array<Tensor<1, dim>, n_corners> beta;
-            if (parallelepiped)
+            const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
+            if (parallelepiped && PointDomains<dim>::is_parallelepiped(D, R))
               PointDomains<dim>::parallelepiped_weights(scale * R,
                                                         alpha,
                                                         beta);
@@ -328,7 +303,7 @@ namespace MPM
                 std::ostringstream s;
                 s << "The CPDI domain of material point " << point->get_id()
                   << " at (" << x_p << ") is inverted (domain vectors "
-                  << R << "): the material it represents has turned inside "
+                  << R << " as a parallelogram): the material it represents has turned inside "
                   << "out; reduce the time step.";
                 throw std::runtime_error(s.str());
               }
@@ -602,9 +577,9 @@ namespace MPM
         double              *props  = point_properties[p];
         const Tensor<2, dim> grad_v = point_sum_gradient[p];
         update_point_stress(props, grad_v);
-        // The domain deforms with the point: R <- (I + dt grad v) R.
-        const Tensor<2, dim> R = PointDomains<dim>::read(props + domain_slot);
-        PointDomains<dim>::write(point_domains.deformed_domain(R, dt * grad_v),
+        // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
+        const auto D = PointDomains<dim>::read(props + domain_slot);
+        PointDomains<dim>::write(point_domains.deformed_domain(D, dt * grad_v),
                                  props + domain_slot);
       }
   }

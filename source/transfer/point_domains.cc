@@ -54,47 +54,97 @@ namespace MPM
   {
     std::vector<std::string> names;
     if (enabled())
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          names.push_back(std::string("domain_") + "xyz"[a] + "xyz"[b]);
+      for (unsigned int c = 0; c < n_corners; ++c)
+        for (unsigned int d = 0; d < dim; ++d)
+          names.push_back("domain_corner" + std::to_string(c) + "_" + "xyz"[d]);
     if (enabled())
       names.emplace_back("domain_scale");
     return names;
   }
 
 
-  template <int dim>
-  Tensor<2, dim>
-  PointDomains<dim>::initial_domain(const Tensor<2, dim> &jacobian,
-                                    const double          volume)
+  namespace
   {
-    const double det = determinant(jacobian);
-    const double s   = std::pow(volume / (std::pow(2., dim) * det), 1. / dim);
-    return s * jacobian;
+    /// x(xi) - x(xi0) of the multilinear map of the cell with @p vertices.
+    template <int dim>
+    Tensor<1, dim>
+    map_difference(
+      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
+                       &vertices,
+      const Point<dim> &xi,
+      const Point<dim> &xi0)
+    {
+      Tensor<1, dim> dx;
+      for (unsigned int i = 0; i < vertices.size(); ++i)
+        {
+          double N = 1, N0 = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const bool upper = (i >> d) & 1;
+              N *= upper ? xi[d] : 1. - xi[d];
+              N0 *= upper ? xi0[d] : 1. - xi0[d];
+            }
+          dx += (N - N0) * (vertices[i] - vertices[0]);
+        }
+      return dx;
+    }
+  } // namespace
+
+
+  template <int dim>
+  typename PointDomains<dim>::Offsets
+  PointDomains<dim>::initial_domain(
+    const std::array<Point<dim>, n_corners> &vertices,
+    const Point<dim>                        &xi,
+    const double                             volume)
+  {
+    // det J at xi, from the map's derivatives.
+    Tensor<2, dim> J;
+    for (unsigned int i = 0; i < vertices.size(); ++i)
+      for (unsigned int e = 0; e < dim; ++e)
+        {
+          double g = ((i >> e) & 1) ? 1. : -1.;
+          for (unsigned int d = 0; d < dim; ++d)
+            if (d != e)
+              g *= ((i >> d) & 1) ? xi[d] : 1. - xi[d];
+          for (unsigned int a = 0; a < dim; ++a)
+            J[a][e] += g * (vertices[i][a] - vertices[0][a]);
+        }
+    const double half =
+      0.5 * std::pow(volume / determinant(J), 1. / dim);
+    Offsets D;
+    for (unsigned int c = 0; c < n_corners; ++c)
+      D[c] = map_difference<dim>(vertices,
+                                 xi + half * corner_signs(c),
+                                 xi);
+    return D;
   }
 
 
   template <int dim>
-  Tensor<2, dim>
-  PointDomains<dim>::deformed_domain(const Tensor<2, dim> &R,
+  typename PointDomains<dim>::Offsets
+  PointDomains<dim>::deformed_domain(const Offsets        &D,
                                      const Tensor<2, dim> &dt_grad_v) const
   {
-    const Tensor<2, dim> deformed = R + dt_grad_v * R;
-    const double         det      = determinant(deformed);
-    const double         side2    = std::pow(std::abs(det), 2. / dim);
+    Offsets deformed;
+    for (unsigned int c = 0; c < n_corners; ++c)
+      deformed[c] = D[c] + dt_grad_v * D[c];
+    const Tensor<2, dim> R     = affine_part(deformed);
+    const double         det   = determinant(R);
+    const double         side2 = std::pow(std::abs(det), 2. / dim);
     double               longest2 = 0;
     for (unsigned int b = 0; b < dim; ++b)
       {
         double length2 = 0;
         for (unsigned int a = 0; a < dim; ++a)
-          length2 += deformed[a][b] * deformed[a][b];
+          length2 += R[a][b] * R[a][b];
         longest2 = std::max(longest2, length2);
       }
     if (!(det > 0) || longest2 <= stretch_limit * stretch_limit * side2)
       return deformed;
     // The rotation of the polar decomposition by Newton's iteration
     // Q <- (Q + Q^{-T}) / 2, which converges quadratically from R.
-    Tensor<2, dim> Q = deformed;
+    Tensor<2, dim> Q = R;
     for (unsigned int i = 0; i < 50; ++i)
       {
         const Tensor<2, dim> next = 0.5 * (Q + transpose(invert(Q)));
@@ -103,7 +153,7 @@ namespace MPM
         if (converged)
           break;
       }
-    return std::sqrt(side2) * Q;
+    return parallelepiped(std::sqrt(side2) * Q);
   }
 
 

@@ -73,7 +73,7 @@ main()
     const Point<2>               x_p(1.5, -0.7);
     std::array<Point<2>, 4>      x;
     for (unsigned int c = 0; c < 4; ++c)
-      x[c] = x_p + PointDomains<2>::corner_offset(R, c);
+      x[c] = x_p + R * PointDomains<2>::corner_signs(c);
     check_domain<2>("parallelogram", x, true);
     {
       std::array<double, 4>       alpha, alpha_closed;
@@ -89,10 +89,10 @@ main()
             "closed form for a parallelogram = quadrature");
     }
     // One corner pulled halfway in (a corner outside the patch).
-    x[3] = x_p + 0.5 * PointDomains<2>::corner_offset(R, 3);
+    x[3] = x_p + 0.5 * R * PointDomains<2>::corner_signs(3);
     check_domain<2>("parallelogram with corner 3 pulled in", x, false);
     // Two corners pulled in differently.
-    x[1] = x_p + 0.125 * PointDomains<2>::corner_offset(R, 1);
+    x[1] = x_p + 0.125 * R * PointDomains<2>::corner_signs(1);
     check_domain<2>("and corner 1 pulled in further", x, false);
     // Inverted: refused.
     std::swap(x[1], x[2]);
@@ -109,7 +109,7 @@ main()
     const Point<3>          x_p(0.2, 0.4, -1);
     std::array<Point<3>, 8> x;
     for (unsigned int c = 0; c < 8; ++c)
-      x[c] = x_p + PointDomains<3>::corner_offset(R, c);
+      x[c] = x_p + R * PointDomains<3>::corner_signs(c);
     check_domain<3>("parallelepiped (3D)", x, true);
     {
       std::array<double, 8>       alpha, alpha_closed;
@@ -124,21 +124,48 @@ main()
       check(difference < 1e-12,
             "closed form for a parallelepiped (3D) = quadrature");
     }
-    x[5] = x_p + 0.5 * PointDomains<3>::corner_offset(R, 5);
+    x[5] = x_p + 0.5 * R * PointDomains<3>::corner_signs(5);
     check_domain<3>("parallelepiped with corner 5 pulled in (3D)", x, false);
   }
   {
     std::cout << "initial domain and deformation:\n";
-    Tensor<2, 2> J;
-    J[0][0] = 0.1, J[0][1] = 0.02, J[1][0] = 0.01, J[1][1] = 0.08;
-    const double       V = 1.3e-3;
-    const Tensor<2, 2> R = PointDomains<2>::initial_domain(J, V);
-    std::cout << "    4 det R / V - 1 = "
-              << flush_to_zero(4 * determinant(R) / V - 1) << '\n';
-    check(std::abs(4 * determinant(R) / V - 1) < 1e-12,
-          "initial domain has the point's volume");
-    check((R / R.norm() - J / J.norm()).norm() < 1e-12,
-          "initial domain is aligned with the cell");
+    // A distorted cell; a point at the centre of sub-cell (1, 0) of 2 x 2,
+    // with the volume the point generator gives it (det J times 1/4).
+    const std::array<Point<2>, 4> vertices = {
+      {Point<2>(0, 0), Point<2>(1.1, 0.1), Point<2>(0.2, 0.9), Point<2>(1.3, 1.2)}};
+    const Point<2> xi(0.75, 0.25);
+    Tensor<2, 2>   J;
+    J[0][0] = (vertices[1][0] - vertices[0][0]) * (1 - xi[1]) +
+              (vertices[3][0] - vertices[2][0]) * xi[1];
+    J[1][0] = (vertices[1][1] - vertices[0][1]) * (1 - xi[1]) +
+              (vertices[3][1] - vertices[2][1]) * xi[1];
+    J[0][1] = (vertices[2][0] - vertices[0][0]) * (1 - xi[0]) +
+              (vertices[3][0] - vertices[1][0]) * xi[0];
+    J[1][1] = (vertices[2][1] - vertices[0][1]) * (1 - xi[0]) +
+              (vertices[3][1] - vertices[1][1]) * xi[0];
+    const double V = determinant(J) / 4;
+    const auto   D = PointDomains<2>::initial_domain(vertices, xi, V);
+    // Its corners are those of the sub-cell: x(0.5, 0), x(1, 0), x(0.5,
+    // 0.5), x(1, 0.5) minus x(xi).
+    const auto map = [&](const double a, const double b) {
+      return Point<2>((1 - a) * (1 - b) * vertices[0] + a * (1 - b) * vertices[1] +
+                      (1 - a) * b * vertices[2] + a * b * vertices[3]);
+    };
+    const Point<2> x_p = map(xi[0], xi[1]);
+    const Point<2> sub_cell[4] = {map(0.5, 0), map(1, 0), map(0.5, 0.5), map(1, 0.5)};
+    double corner_error = 0;
+    std::array<Point<2>, 4> corners;
+    for (unsigned int c = 0; c < 4; ++c)
+      {
+        corners[c]   = x_p + D[c];
+        corner_error = std::max(corner_error, (corners[c] - sub_cell[c]).norm());
+      }
+    std::cout << "    initial domain corners - sub-cell corners: "
+              << flush_to_zero(corner_error) << '\n';
+    check(corner_error < 1e-12,
+          "initial domain of a sub-cell centre is the sub-cell (distorted cell)");
+    check_domain<2>("initial domain in a distorted cell", corners, false);
+    Tensor<2, 2> R = PointDomains<2>::affine_part(D);
 
     ParameterHandler prm;
     PointDomains<2>::declare_parameters(prm);
@@ -152,8 +179,12 @@ main()
     // A small deformation: (I + dt grad v) R.
     Tensor<2, 2> dt_grad_v;
     dt_grad_v[0][1] = 0.1;
-    const Tensor<2, 2> small = domains.deformed_domain(R, dt_grad_v);
-    check((small - (R + dt_grad_v * R)).norm() < 1e-15 * R.norm(),
+    const auto small = domains.deformed_domain(D, dt_grad_v);
+    double     small_error = 0;
+    for (unsigned int c = 0; c < 4; ++c)
+      small_error = std::max(small_error,
+                             (small[c] - (D[c] + dt_grad_v * D[c])).norm());
+    check(small_error < 1e-15 * R.norm(),
           "a small deformation is applied as is");
     // A large stretch of a rotated square: reset to the square of the
     // same area with the same rotation.
@@ -167,7 +198,8 @@ main()
     stretch[0][0] -= 1;
     // (I + stretch) = diag(4, 1/4) in the rotated frame: area kept.
     const Tensor<2, 2> dt_grad = Q * stretch * transpose(Q);
-    const Tensor<2, 2> reset   = domains.deformed_domain(square, dt_grad);
+    const Tensor<2, 2> reset   = PointDomains<2>::affine_part(
+      domains.deformed_domain(PointDomains<2>::parallelepiped(square), dt_grad));
     std::cout << "    reset domain / (0.01 Q) - 1: "
               << flush_to_zero((reset - square).norm() / square.norm())
               << '\n';

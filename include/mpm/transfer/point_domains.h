@@ -25,7 +25,7 @@ namespace MPM
     /// node jumps when it crosses a cell edge (the cell-crossing error).
     linear,
     /// CPDI (Sadeghirad, Brannon and Burghardt 2011): each point owns a
-    /// parallelogram (parallelepiped) domain that deforms with it; its
+    /// quadrilateral (hexahedral) domain that deforms with it; its
     /// weights are the mesh functions averaged over the domain,
     /// interpolated from the domain's corners. Smooth in the point's
     /// position: no cell-crossing error.
@@ -36,14 +36,14 @@ namespace MPM
    * The material points' domains for CPDI on the isoparametric mesh, and
    * the arithmetic that turns a domain into weights.
    *
-   * A point's domain is the parallelepiped x_p + R s, s in [-1, 1]^dim,
-   * spanned by the columns of R (its half edge vectors), stored in the
-   * point's properties. R starts aligned with the point's cell (the cell's
-   * Jacobian at the point, scaled so that the domain's volume is the
-   * point's volume: on a ground-conforming mesh the domains of the points
-   * next to the ground lie along it) and follows the point's deformation:
-   * R <- (I + dt grad v) R with the same velocity gradient that updates its
-   * stress and volume, so 2^dim det R stays equal to its volume.
+   * A point's domain is a quadrilateral (hexahedron) given by the offsets
+   * D_c of its 2^dim corners from the point, stored in the point's
+   * properties. It starts as the point's sub-cell, the image of a
+   * reference square about the point (initial_domain(): the domains tile
+   * the material, and on a ground-conforming mesh those of the points next
+   * to the ground lie along it), and follows the point's deformation:
+   * D_c <- (I + dt grad v) D_c with the same velocity gradient that updates
+   * its stress and volume (so it stays the affine image of its sub-cell).
    *
    * The weight of node i is the average of its shape function over the
    * domain, with N_i interpolated from the domain's corners x_c by the
@@ -61,7 +61,7 @@ namespace MPM
    * rank or many: every such cell is owned or a ghost). A corner outside
    * that patch (outside the mesh, beyond a wall, or a domain stretched over
    * more than a cell) makes the Simulator shrink the whole domain about the
-   * point (x_p + s R s', the largest s in (0, 1] found by bisection, kept
+   * point (x_p + s D_c, the largest s in (0, 1] found by bisection, kept
    * in the point's last slot, doubled if possible every 8th step), so it
    * stays centred on the point: a point at a wall tends to the linear
    * weights there and moves with the wall's nodes. A corner within 2 % of
@@ -94,37 +94,82 @@ namespace MPM
       return weights == WeightFunctions::cpdi;
     }
 
-    /// Property slots per point when enabled: R (row-major), then the
-    /// scale by which the domain is shrunk at a boundary (see the class
-    /// documentation).
+    /// The offsets x_c - x_p of a domain's corners (deal.II's vertex
+    /// order).
+    using Offsets = std::array<Tensor<1, dim>, n_corners>;
+
+    /// Property slots per point when enabled: the corner offsets, then
+    /// the scale by which the domain is shrunk at a boundary (see the
+    /// class documentation).
     unsigned int
     n_point_properties() const
     {
-      return enabled() ? dim * dim + 1 : 0;
+      return enabled() ? n_corners * dim + 1 : 0;
     }
 
     std::vector<std::string>
     point_property_names() const;
 
     /**
-     * The initial domain of a point of volume @p volume whose cell has the
-     * Jacobian @p jacobian (reference cell [0,1]^dim to real space) at the
-     * point: R = s J with s such that 2^dim det R = volume.
+     * The initial domain of a point of volume @p volume at reference
+     * coordinates @p xi of the cell with @p vertices: the image through the
+     * cell's map of the reference square (cube) centred at @p xi whose
+     * image has the point's volume (to the accuracy of det J at the point,
+     * exact in 2D). For points at the centres of a cell's sub-cells (the
+     * point generator's) these are the sub-cells themselves: the domains
+     * tile the material exactly, also on a distorted mesh, where
+     * parallelograms from the Jacobian at the point would overlap and
+     * leave gaps by a fixed fraction of a cell at every refinement.
      */
-    static Tensor<2, dim>
-    initial_domain(const Tensor<2, dim> &jacobian, const double volume);
+    static Offsets
+    initial_domain(const std::array<Point<dim>, n_corners> &vertices,
+                   const Point<dim>                        &xi,
+                   const double                             volume);
 
-    /**
-     * Offset x_c - x_p of corner @p c of the domain @p R (deal.II's vertex
-     * order: bit d of c is the sign of s_d).
-     */
+    /// The signs s_c of corner @p c (bit d of c is the sign of s_d).
     static Tensor<1, dim>
-    corner_offset(const Tensor<2, dim> &R, const unsigned int c)
+    corner_signs(const unsigned int c)
     {
       Tensor<1, dim> s;
       for (unsigned int d = 0; d < dim; ++d)
         s[d] = ((c >> d) & 1) ? 1. : -1.;
-      return R * s;
+      return s;
+    }
+
+    /// Offsets of the parallelepiped x_p + R s.
+    static Offsets
+    parallelepiped(const Tensor<2, dim> &R)
+    {
+      Offsets D;
+      for (unsigned int c = 0; c < n_corners; ++c)
+        D[c] = R * corner_signs(c);
+      return D;
+    }
+
+    /**
+     * The affine part R of a domain, the least-squares fit of
+     * D_c = R s_c: R = 2^-dim sum_c D_c (x) s_c; the domain itself if it
+     * is a parallelepiped.
+     */
+    static Tensor<2, dim>
+    affine_part(const Offsets &D)
+    {
+      Tensor<2, dim> R;
+      for (unsigned int c = 0; c < n_corners; ++c)
+        R += outer_product(D[c], corner_signs(c));
+      return R / n_corners;
+    }
+
+    /// Whether the domain @p D is the parallelepiped of its affine part
+    /// @p R (to round-off).
+    static bool
+    is_parallelepiped(const Offsets &D, const Tensor<2, dim> &R)
+    {
+      const double tolerance = 1e-24 * R.norm_square();
+      for (unsigned int c = 0; c < n_corners; ++c)
+        if ((D[c] - R * corner_signs(c)).norm_square() > tolerance)
+          return false;
+      return true;
     }
 
     /**
@@ -139,15 +184,15 @@ namespace MPM
                    std::array<Tensor<1, dim>, n_corners>   &beta);
 
     /**
-     * The domain @p R after a deformation step by the velocity gradient
-     * times dt, @p dt_grad_v: (I + dt grad v) R, or, if that stretches it
-     * more than the 'CPDI stretch limit' (its longest half edge over the
-     * half side of the square or cube of the same volume), a square (cube)
-     * of the same volume turned by the domain's rotation (the orthogonal
-     * factor of its polar decomposition).
+     * The domain @p D after a deformation step by the velocity gradient
+     * times dt, @p dt_grad_v: (I + dt grad v) D_c, or, if that stretches it
+     * more than the 'CPDI stretch limit' (the longest half edge of its
+     * affine part over the half side of the square or cube of the same
+     * volume), that square (cube) turned by the domain's rotation (the
+     * orthogonal factor of the polar decomposition of its affine part).
      *
      * Why: in granular flow the deformation gradient of a point grows
-     * without bound (shear strains of hundreds), and the domain x_p + F R0
+     * without bound (shear strains of hundreds), and the domain x_p + F D0
      * becomes a needle many cells long, whose corners then sit in cells
      * that have nothing to do with the point. Measured: without the limit
      * the column collapse at a = 2 created energy (doc/convergence.md).
@@ -155,15 +200,14 @@ namespace MPM
      * full history, so the shape is reset, as CPDI codes do for large
      * deformation.
      */
-    Tensor<2, dim>
-    deformed_domain(const Tensor<2, dim> &R,
-                    const Tensor<2, dim> &dt_grad_v) const;
+    Offsets
+    deformed_domain(const Offsets &D, const Tensor<2, dim> &dt_grad_v) const;
 
     /**
      * corner_weights() of the parallelepiped x_p + R s in closed form:
-     * alpha_c = 2^-dim, beta_c = R^{-T} s_c / 2^dim (s_c the corner's
-     * signs). The common case: the domain is only a parallelepiped's
-     * corners unless one was moved onto a cell.
+     * alpha_c = 2^-dim, beta_c = R^{-T} s_c / 2^dim. The common case: a
+     * domain is a parallelepiped on a mesh of parallelograms, and as long
+     * as no corner was moved onto a cell.
      */
     static void
     parallelepiped_weights(const Tensor<2, dim>                  &R,
@@ -174,30 +218,27 @@ namespace MPM
       for (unsigned int c = 0; c < n_corners; ++c)
         {
           alpha[c] = 1. / n_corners;
-          Tensor<1, dim> s;
-          for (unsigned int d = 0; d < dim; ++d)
-            s[d] = ((c >> d) & 1) ? 1. : -1.;
-          beta[c] = (inverse_transpose * s) / n_corners;
+          beta[c]  = (inverse_transpose * corner_signs(c)) / n_corners;
         }
     }
 
-    /// Read R from a point's slots @p data.
-    static Tensor<2, dim>
+    /// Read the corner offsets from a point's slots @p data.
+    static Offsets
     read(const double *data)
     {
-      Tensor<2, dim> R;
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          R[a][b] = data[a * dim + b];
-      return R;
+      Offsets D;
+      for (unsigned int c = 0; c < n_corners; ++c)
+        for (unsigned int d = 0; d < dim; ++d)
+          D[c][d] = data[c * dim + d];
+      return D;
     }
 
     static void
-    write(const Tensor<2, dim> &R, double *data)
+    write(const Offsets &D, double *data)
     {
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          data[a * dim + b] = R[a][b];
+      for (unsigned int c = 0; c < n_corners; ++c)
+        for (unsigned int d = 0; d < dim; ++d)
+          data[c * dim + d] = D[c][d];
     }
 
   private:
