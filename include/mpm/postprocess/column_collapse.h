@@ -74,7 +74,7 @@ namespace MPM
       measure(const Simulator<dim> &simulator) const;
 
       double width = 0.1, initial_height = 0.2, base = 0, wall = 0,
-             stop_speed = 0.01;
+             stop_speed = 0.01, bin_width = 0.005, front_thickness = 0.01;
 
       std::string table;
       double      last_time_above_stop = 0;
