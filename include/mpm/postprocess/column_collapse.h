@@ -63,7 +63,8 @@ namespace MPM
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &table &last_time_above_stop &front &height &mean_speed;
+        ar &table &last_time_above_stop &front &height &mean_speed
+          &initial_volume;
       }
 
     private:
@@ -79,6 +80,9 @@ namespace MPM
       std::string table;
       double      last_time_above_stop = 0;
       double      front = 0, height = 0, mean_speed = 0;
+      /// The points' total volume at the start (their bulking at the end
+      /// is reported).
+      double      initial_volume = 0;
     };
   } // namespace Postprocessors
 } // namespace MPM
