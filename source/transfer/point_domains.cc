@@ -164,6 +164,39 @@ namespace MPM
     std::array<double, n_corners>           &alpha,
     std::array<Tensor<1, dim>, n_corners>   &beta)
   {
+    if constexpr (dim == 2)
+      {
+        // Closed form for a quadrilateral: with x(xi, eta) = x0 + b xi +
+        // c eta + d xi eta, det J = a0 + a1 xi + a2 eta is linear, so
+        // int M_c det J and the area are exact polynomials; and
+        // int grad M_c = (boundary integral of M_c n) = half the outward
+        // normals of the two edges at c: with the corners in
+        // counter-clockwise order (0, 1, 3, 2), n and p the next and the
+        // previous corner of c, beta_c V = (y_n - y_p, x_p - x_n) / 2.
+        const Tensor<1, 2> b = corners[1] - corners[0];
+        const Tensor<1, 2> c = corners[2] - corners[0];
+        const Tensor<1, 2> d = corners[3] - corners[1] - c;
+        const auto cross = [](const Tensor<1, 2> &u, const Tensor<1, 2> &v) {
+          return u[0] * v[1] - u[1] * v[0];
+        };
+        const double a0 = cross(b, c), a1 = cross(b, d), a2 = cross(d, c);
+        if (!(a0 > 0 && a0 + a1 > 0 && a0 + a2 > 0 && a0 + a1 + a2 > 0))
+          return false;
+        const double volume = a0 + 0.5 * (a1 + a2);
+        // Counter-clockwise neighbours in deal.II's numbering.
+        constexpr unsigned int next[4]     = {1, 3, 0, 2};
+        constexpr unsigned int previous[4] = {2, 0, 3, 1};
+        for (unsigned int k = 0; k < 4; ++k)
+          {
+            const double int_xi  = (k & 1) ? 1. / 6. : 1. / 12.;
+            const double int_eta = (k & 2) ? 1. / 6. : 1. / 12.;
+            alpha[k] = (0.25 * a0 + a1 * int_xi + a2 * int_eta) / volume;
+            const Point<2> &xn = corners[next[k]], &xp = corners[previous[k]];
+            beta[k][0]         = 0.5 * (xn[1] - xp[1]) / volume;
+            beta[k][1]         = 0.5 * (xp[0] - xn[0]) / volume;
+          }
+        return true;
+      }
     alpha.fill(0.);
     beta.fill(Tensor<1, dim>());
     const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
