@@ -108,6 +108,21 @@ namespace MPM
           sigma[a][b] = stress[a][b];
       return sigma;
     }
+
+
+    /// A corner's force before its shape function values: -V sigma beta_c
+    /// + alpha_c m g (f_i = N_i(x_c) times this).
+    template <int dim>
+    Tensor<1, dim>
+    corner_force(const double         *props,
+                 const double          alpha,
+                 const Tensor<1, dim> &beta,
+                 const Tensor<1, dim> &g)
+    {
+      using Layout = PropertyLayout<dim>;
+      return -props[Layout::volume] * (in_plane_stress<dim>(props) * beta) +
+             (alpha * props[Layout::mass]) * g;
+    }
   } // namespace
 
 
@@ -411,9 +426,7 @@ namespace MPM
               {
                 // f_i = -V sigma grad w_i + w_i m g, corner by corner.
                 const Tensor<1, dim> f =
-                  -props[Layout::volume] *
-                    (in_plane_stress<dim>(props) * corner_beta[k]) +
-                  m * g;
+                  corner_force<dim>(props, corner_alpha[k], corner_beta[k], g);
                 for (unsigned int i = 0; i < n_vertices; ++i)
                   forces[i] += N[i] * f;
               }
@@ -423,15 +436,10 @@ namespace MPM
         if (with_forces)
           add_to_nodes(cell, forces, nodal_force);
       }
-    nodal_mass.compress(VectorOperation::add);
-    nodal_momentum.compress(VectorOperation::add);
-    nodal_mass.update_ghost_values();
-    nodal_momentum.update_ghost_values();
+    add_contributions_of_all_ranks(nodal_mass);
+    add_contributions_of_all_ranks(nodal_momentum);
     if (with_forces)
-      {
-        nodal_force.compress(VectorOperation::add);
-        nodal_force.update_ghost_values();
-      }
+      add_contributions_of_all_ranks(nodal_force);
   }
 
 
@@ -440,7 +448,6 @@ namespace MPM
   Simulator<dim>::map_forces_cpdi()
   {
     TimerOutput::Scope     t(timer, "particle to grid");
-    using Layout                      = PropertyLayout<dim>;
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     const Tensor<1, dim>   g          = time_stepping.gravity;
     unsigned int           k          = 0;
@@ -449,19 +456,18 @@ namespace MPM
         std::array<Tensor<1, dim>, n_vertices> forces;
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
-            const double        *props = point_properties[corner_point[k]];
             const Tensor<1, dim> f =
-              -props[Layout::volume] *
-                (in_plane_stress<dim>(props) * corner_beta[k]) +
-              (corner_alpha[k] * props[Layout::mass]) * g;
+              corner_force<dim>(point_properties[corner_point[k]],
+                                corner_alpha[k],
+                                corner_beta[k],
+                                g);
             const auto &N = shape_functions[k].value;
             for (unsigned int i = 0; i < n_vertices; ++i)
               forces[i] += N[i] * f;
           }
         add_to_nodes(cell, forces, nodal_force);
       }
-    nodal_force.compress(VectorOperation::add);
-    nodal_force.update_ghost_values();
+    add_contributions_of_all_ranks(nodal_force);
   }
 
 
@@ -532,8 +538,7 @@ namespace MPM
               }
             add_to_nodes(cell, remapped, nodal_momentum);
           }
-        nodal_momentum.compress(VectorOperation::add);
-        nodal_momentum.update_ghost_values();
+        add_contributions_of_all_ranks(nodal_momentum);
       }
     set_max_point_speed(v_max2);
   }

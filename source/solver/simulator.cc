@@ -676,15 +676,10 @@ namespace MPM
         if (with_forces)
           add_to_nodes(cell, forces, nodal_force);
       }
-    nodal_mass.compress(VectorOperation::add);
-    nodal_momentum.compress(VectorOperation::add);
-    nodal_mass.update_ghost_values();
-    nodal_momentum.update_ghost_values();
+    add_contributions_of_all_ranks(nodal_mass);
+    add_contributions_of_all_ranks(nodal_momentum);
     if (with_forces)
-      {
-        nodal_force.compress(VectorOperation::add);
-        nodal_force.update_ghost_values();
-      }
+      add_contributions_of_all_ranks(nodal_force);
   }
 
 
@@ -761,8 +756,7 @@ namespace MPM
               }
             add_to_nodes(cell, sums, round_trip_momentum);
           }
-        round_trip_momentum.compress(VectorOperation::add);
-        round_trip_momentum.update_ghost_values();
+        add_contributions_of_all_ranks(round_trip_momentum);
         for (const unsigned int i : active_dofs)
           {
             const double m = nodal_mass.local_element(i);
@@ -839,8 +833,7 @@ namespace MPM
           add_point_forces(point_properties[k], shape_functions[k], g, forces);
         add_to_nodes(cell, forces, nodal_force);
       }
-    nodal_force.compress(VectorOperation::add);
-    nodal_force.update_ghost_values();
+    add_contributions_of_all_ranks(nodal_force);
   }
 
 
@@ -961,8 +954,7 @@ namespace MPM
       }
     if (remap_momentum)
       {
-        nodal_momentum.compress(VectorOperation::add);
-        nodal_momentum.update_ghost_values();
+        add_contributions_of_all_ranks(nodal_momentum);
       }
     set_max_point_speed(v_max2);
   }

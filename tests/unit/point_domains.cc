@@ -62,6 +62,28 @@ check_domain(const std::string                                      &name,
 }
 
 
+/// The parallelepiped's closed-form weights against corner_weights().
+template <int dim>
+void
+check_closed_form(const Tensor<2, dim> &R,
+                  const std::array<Point<dim>, PointDomains<dim>::n_corners> &x)
+{
+  constexpr unsigned int n = PointDomains<dim>::n_corners;
+  std::array<double, n>         alpha, alpha_closed;
+  std::array<Tensor<1, dim>, n> beta, beta_closed;
+  PointDomains<dim>::corner_weights(x, alpha, beta);
+  PointDomains<dim>::parallelepiped_weights(R, alpha_closed, beta_closed);
+  double difference = 0;
+  for (unsigned int c = 0; c < n; ++c)
+    difference = std::max({difference,
+                           std::abs(alpha[c] - alpha_closed[c]),
+                           (beta[c] - beta_closed[c]).norm() * R.norm()});
+  check(difference < 1e-12,
+        dim == 2 ? "closed form for a parallelogram = quadrature" :
+                   "closed form for a parallelepiped (3D) = quadrature");
+}
+
+
 int
 main()
 {
@@ -75,19 +97,7 @@ main()
     for (unsigned int c = 0; c < 4; ++c)
       x[c] = x_p + R * PointDomains<2>::corner_signs(c);
     check_domain<2>("parallelogram", x, true);
-    {
-      std::array<double, 4>       alpha, alpha_closed;
-      std::array<Tensor<1, 2>, 4> beta, beta_closed;
-      PointDomains<2>::corner_weights(x, alpha, beta);
-      PointDomains<2>::parallelepiped_weights(R, alpha_closed, beta_closed);
-      double difference = 0;
-      for (unsigned int c = 0; c < 4; ++c)
-        difference = std::max({difference,
-                               std::abs(alpha[c] - alpha_closed[c]),
-                               (beta[c] - beta_closed[c]).norm() * R.norm()});
-      check(difference < 1e-12,
-            "closed form for a parallelogram = quadrature");
-    }
+    check_closed_form<2>(R, x);
     // One corner pulled halfway in (a corner outside the patch).
     x[3] = x_p + 0.5 * R * PointDomains<2>::corner_signs(3);
     check_domain<2>("parallelogram with corner 3 pulled in", x, false);
@@ -111,19 +121,7 @@ main()
     for (unsigned int c = 0; c < 8; ++c)
       x[c] = x_p + R * PointDomains<3>::corner_signs(c);
     check_domain<3>("parallelepiped (3D)", x, true);
-    {
-      std::array<double, 8>       alpha, alpha_closed;
-      std::array<Tensor<1, 3>, 8> beta, beta_closed;
-      PointDomains<3>::corner_weights(x, alpha, beta);
-      PointDomains<3>::parallelepiped_weights(R, alpha_closed, beta_closed);
-      double difference = 0;
-      for (unsigned int c = 0; c < 8; ++c)
-        difference = std::max({difference,
-                               std::abs(alpha[c] - alpha_closed[c]),
-                               (beta[c] - beta_closed[c]).norm() * R.norm()});
-      check(difference < 1e-12,
-            "closed form for a parallelepiped (3D) = quadrature");
-    }
+    check_closed_form<3>(R, x);
     x[5] = x_p + 0.5 * R * PointDomains<3>::corner_signs(5);
     check_domain<3>("parallelepiped with corner 5 pulled in (3D)", x, false);
   }

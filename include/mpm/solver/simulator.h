@@ -306,6 +306,15 @@ namespace MPM
                   &values,
       NodalVector &v) const;
 
+    /// Sum what every rank added to the entries of @p v (compress) and
+    /// give every rank the sums at its ghost nodes.
+    static void
+    add_contributions_of_all_ranks(NodalVector &v)
+    {
+      v.compress(VectorOperation::add);
+      v.update_ghost_values();
+    }
+
     void
     compute_nodal_velocity(NodalVector &velocity_out);
 
