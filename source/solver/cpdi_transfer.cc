@@ -139,16 +139,9 @@ namespace MPM
     point_properties.resize(n_points);
     point_cell_map.resize(n_points);
 
-    struct Corner
-    {
-      CellIterator   cell;
-      unsigned int   point;
-      Point<dim>     xi;
-      double         alpha;
-      Tensor<1, dim> beta;
-    };
-    std::vector<Corner> corners;
-    corners.reserve(n_points * n_corners);
+    // This step's corners, in the order of the points (reused storage).
+    auto &corners = located_corners;
+    corners.clear();
 
     unsigned int p = 0;
     point_cell_begin.clear();
@@ -187,7 +180,7 @@ namespace MPM
                   point->get_reference_location(),
                   props[Layout::volume]);
                 PointDomains<dim>::write(D, props + domain_slot);
-                props[domain_slot + PointDomains<dim>::n_corners * dim] = 1;
+                props[domain_slot + PointDomains<dim>::scale_slot] = 1;
               }
             const Point<dim> x_p = point->get_location();
             std::array<Point<dim>, n_corners>   x;
@@ -271,7 +264,7 @@ namespace MPM
             // from step to step (the last slot) and tried to be doubled
             // every 8th step, so a point resting against a wall pays for
             // one try most steps, not a bisection.
-            double &scale = props[domain_slot + PointDomains<dim>::n_corners * dim];
+            double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
             const double grown =
               step % 8 == 0 ? std::min(1., 2 * scale) : scale;
             if (locate_corners(grown))
@@ -332,8 +325,10 @@ namespace MPM
     // Group the corners by cell (a counting sort in the order in which the
     // cells were first touched), so that each pass adds to a cell's nodes
     // once for all corners in it.
-    std::vector<unsigned int> slot_of_cell(grid.triangulation.n_active_cells(),
-                                           numbers::invalid_unsigned_int);
+    // slot_of_cell (as long as the mesh, set up with the nodal fields) is
+    // reset below for the touched cells only: no per-step cost in the size
+    // of the mesh.
+    auto &slot_of_cell = corner_slot_of_cell;
     std::vector<CellIterator> touched;
     std::vector<unsigned int> count;
     for (const auto &corner : corners)
@@ -367,6 +362,8 @@ namespace MPM
         corner_alpha[k] = corner.alpha;
         corner_beta[k]  = corner.beta;
       }
+    for (const CellIterator &cell : touched)
+      slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
 
     active_cells.clear();
     active_dofs.clear();

@@ -325,6 +325,8 @@ namespace MPM
         // sharing a vertex with it (where CPDI's corners may lie).
         const auto sets = GridTools::vertex_to_cell_map(grid.triangulation);
         cell_patches.assign(grid.triangulation.n_active_cells(), {});
+        corner_slot_of_cell.assign(grid.triangulation.n_active_cells(),
+                                   numbers::invalid_unsigned_int);
         for (const auto &cell : grid.triangulation.active_cell_iterators())
           if (cell->is_locally_owned())
             {

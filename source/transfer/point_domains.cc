@@ -1,3 +1,4 @@
+#include <mpm/grid/inverse_mapping.h>
 #include <mpm/transfer/point_domains.h>
 
 #include <cmath>
@@ -63,34 +64,6 @@ namespace MPM
   }
 
 
-  namespace
-  {
-    /// x(xi) - x(xi0) of the multilinear map of the cell with @p vertices.
-    template <int dim>
-    Tensor<1, dim>
-    map_difference(
-      const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
-                       &vertices,
-      const Point<dim> &xi,
-      const Point<dim> &xi0)
-    {
-      Tensor<1, dim> dx;
-      for (unsigned int i = 0; i < vertices.size(); ++i)
-        {
-          double N = 1, N0 = 1;
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              const bool upper = (i >> d) & 1;
-              N *= upper ? xi[d] : 1. - xi[d];
-              N0 *= upper ? xi0[d] : 1. - xi0[d];
-            }
-          dx += (N - N0) * (vertices[i] - vertices[0]);
-        }
-      return dx;
-    }
-  } // namespace
-
-
   template <int dim>
   typename PointDomains<dim>::Offsets
   PointDomains<dim>::initial_domain(
@@ -112,11 +85,10 @@ namespace MPM
         }
     const double half =
       0.5 * std::pow(volume / determinant(J), 1. / dim);
-    Offsets D;
+    const Point<dim> x = map_unit_to_real<dim>(vertices, xi);
+    Offsets          D;
     for (unsigned int c = 0; c < n_corners; ++c)
-      D[c] = map_difference<dim>(vertices,
-                                 xi + half * corner_signs(c),
-                                 xi);
+      D[c] = map_unit_to_real<dim>(vertices, xi + half * corner_signs(c)) - x;
     return D;
   }
 
@@ -142,17 +114,8 @@ namespace MPM
       }
     if (!(det > 0) || longest2 <= stretch_limit * stretch_limit * side2)
       return deformed;
-    // The rotation of the polar decomposition by Newton's iteration
-    // Q <- (Q + Q^{-T}) / 2, which converges quadratically from R.
-    Tensor<2, dim> Q = R;
-    for (unsigned int i = 0; i < 50; ++i)
-      {
-        const Tensor<2, dim> next = 0.5 * (Q + transpose(invert(Q)));
-        const bool converged = (next - Q).norm_square() < 1e-28 * dim;
-        Q                    = next;
-        if (converged)
-          break;
-      }
+    // The rotation of the polar decomposition (det R > 0 here).
+    const Tensor<2, dim> Q = project_onto_orthogonal_tensors(R);
     return parallelepiped(std::sqrt(side2) * Q);
   }
 

@@ -500,6 +500,20 @@ namespace MPM
     std::vector<unsigned int>   corner_point;
     std::vector<double>         corner_alpha;
     std::vector<Tensor<1, dim>> corner_beta;
+    /// CPDI: a corner located by prepare_cpdi_transfer(), before the
+    /// corners are grouped by cell.
+    struct LocatedCorner
+    {
+      typename Triangulation<dim>::active_cell_iterator cell;
+      unsigned int                                      point;
+      Point<dim>                                        xi;
+      double                                            alpha;
+      Tensor<1, dim>                                    beta;
+    };
+    std::vector<LocatedCorner> located_corners;
+    /// CPDI: each active cell's slot among the cells holding corners
+    /// (invalid_unsigned_int between steps).
+    std::vector<unsigned int> corner_slot_of_cell;
     /// CPDI: each point's cell map (2D), and per-point sums of a pass.
     std::vector<const BilinearCellMap *> point_cell_map;
     std::vector<Tensor<1, dim>>          point_sum_a, point_sum_b;

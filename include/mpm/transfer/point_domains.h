@@ -82,12 +82,6 @@ namespace MPM
     void
     parse_parameters(ParameterHandler &prm);
 
-    WeightFunctions
-    weight_functions() const
-    {
-      return weights;
-    }
-
     bool
     enabled() const
     {
@@ -104,8 +98,11 @@ namespace MPM
     unsigned int
     n_point_properties() const
     {
-      return enabled() ? n_corners * dim + 1 : 0;
+      return enabled() ? scale_slot + 1 : 0;
     }
+
+    /// The slot of the shrink scale, after the corner offsets.
+    static constexpr unsigned int scale_slot = n_corners * dim;
 
     std::vector<std::string>
     point_property_names() const;
