@@ -197,7 +197,13 @@ namespace MPM
   BoundaryConditions<dim>::setup(const BackgroundGrid<dim> &grid,
                                  const NodalVector         &layout)
   {
+    // The contact state is kept by location through a new setup (after
+    // repartitioning, a node may now live on another rank).
+    const std::vector<ContactLocations> contact_before =
+      Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
+                                 contact_locations());
     nodes.clear();
+    contact_state.clear();
     normal_constraints.clear();
     normal_constraints.reinit(grid.locally_relevant_dofs);
     if (specs.empty())
@@ -263,6 +269,7 @@ namespace MPM
     struct NodeConstraint
     {
       std::array<types::global_dof_index, dim> dofs;
+      Point<dim>                               location;
       std::vector<Tensor<1, dim>>              normals;
       std::vector<double>                      values;
       bool                                     frictional = false;
@@ -280,6 +287,7 @@ namespace MPM
         for (const unsigned int v : cell->vertex_indices())
           {
             NodeConstraint nc;
+            nc.location = cell->vertex(v);
             for (unsigned int c = 0; c < dim; ++c)
               nc.dofs[c] = cell->vertex_dof_index(v, c);
             const unsigned int local0 =
@@ -467,27 +475,101 @@ namespace MPM
         node.frictional           = nc.frictional;
         node.normal               = nc.normals[0];
         node.friction_coefficient = nc.mu;
+        node.location             = nc.location;
         nodes.push_back(node);
+      }
+    contact_state.assign(nodes.size(), ContactState::free);
+    set_contact(merge(contact_before));
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::project_velocity(NodalVector  &velocity,
+                                            const Contact contact) const
+  {
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      {
+        const auto    &node = nodes[k];
+        Tensor<1, dim> v;
+        for (unsigned int c = 0; c < dim; ++c)
+          v[c] = velocity.local_element(node.local_dofs[c]);
+        if (node.frictional)
+          {
+            const ContactState last = contact == Contact::as_last_update ?
+                                        contact_state[k] :
+                                        ContactState::free;
+            // A frictional wall only pushes: a node moving away from it
+            // is free, unless the last nodal update held it.
+            if (v * node.normal <= 0 && last == ContactState::free)
+              continue;
+            // A node that stuck did not move at all.
+            if (last == ContactState::stuck)
+              v = Tensor<1, dim>();
+          }
+        v = node.projector * v + node.offset;
+        for (unsigned int c = 0; c < dim; ++c)
+          velocity.local_element(node.local_dofs[c]) = v[c];
       }
   }
 
 
   template <int dim>
   void
-  BoundaryConditions<dim>::project_velocity(NodalVector &velocity) const
+  BoundaryConditions<dim>::constrain_updated_velocity(NodalVector &velocity)
   {
-    for (const auto &node : nodes)
-      {
-        Tensor<1, dim> v;
-        for (unsigned int c = 0; c < dim; ++c)
-          v[c] = velocity.local_element(node.local_dofs[c]);
-        // A frictional wall only pushes: a node moving away from it is free.
-        if (node.frictional && v * node.normal <= 0)
-          continue;
-        v = node.projector * v + node.offset;
-        for (unsigned int c = 0; c < dim; ++c)
-          velocity.local_element(node.local_dofs[c]) = v[c];
-      }
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      if (nodes[k].frictional)
+        {
+          Tensor<1, dim> v;
+          for (unsigned int c = 0; c < dim; ++c)
+            v[c] = velocity.local_element(nodes[k].local_dofs[c]);
+          // apply_friction() has marked the nodes that stick.
+          if (v * nodes[k].normal <= 0)
+            contact_state[k] = ContactState::free;
+          else if (contact_state[k] != ContactState::stuck)
+            contact_state[k] = ContactState::sliding;
+        }
+    project_velocity(velocity, Contact::by_velocity);
+  }
+
+
+  template <int dim>
+  typename BoundaryConditions<dim>::ContactLocations
+  BoundaryConditions<dim>::contact_locations() const
+  {
+    ContactLocations locations;
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      if (contact_state[k] != ContactState::free)
+        locations[contact_state[k] == ContactState::stuck].push_back(
+          nodes[k].location);
+    return locations;
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_contact(const ContactLocations &locations)
+  {
+    // Exact comparison: the locations are vertices of the same mesh.
+    const auto less = [](const Point<dim> &a, const Point<dim> &b) {
+      return std::lexicographical_compare(a.begin_raw(),
+                                          a.end_raw(),
+                                          b.begin_raw(),
+                                          b.end_raw());
+    };
+    std::array<std::vector<Point<dim>>, 2> sorted = locations;
+    for (auto &list : sorted)
+      std::sort(list.begin(), list.end(), less);
+    const auto contains = [&](const unsigned int list, const Point<dim> &x) {
+      return std::binary_search(sorted[list].begin(), sorted[list].end(), x, less);
+    };
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      contact_state[k] =
+        !nodes[k].frictional           ? ContactState::free :
+        contains(1, nodes[k].location) ? ContactState::stuck :
+        contains(0, nodes[k].location) ? ContactState::sliding :
+                                         ContactState::free;
   }
 
 
@@ -497,8 +579,11 @@ namespace MPM
                                                    const Tensor<1, dim> &a,
                                                    const Tensor<1, dim> &n,
                                                    const double          mu,
-                                                   const double          dt)
+                                                   const double          dt,
+                                                   bool *const           sticks)
   {
+    if (sticks != nullptr)
+      *sticks = false;
     // Normal velocity change per unit time that the wall must remove to keep
     // v_n = 0 at the end of the step: the normal reaction per unit mass. The
     // wall only pushes, so friction acts only if it is positive.
@@ -521,6 +606,8 @@ namespace MPM
     const Tensor<1, dim> v_t_new =
       speed <= capacity ? Tensor<1, dim>() :
                           (1. - capacity / speed) * v_t_trial;
+    if (sticks != nullptr)
+      *sticks = speed <= capacity;
     return a_n * n + (v_t_new - v_t) / dt;
   }
 
@@ -530,11 +617,15 @@ namespace MPM
   BoundaryConditions<dim>::apply_friction(const NodalVector &mass,
                                           const NodalVector &velocity,
                                           NodalVector       &acceleration,
-                                          const double       dt) const
+                                          const double       dt)
   {
-    for (const auto &node : nodes)
+    for (unsigned int k = 0; k < nodes.size(); ++k)
       {
-        if (!node.frictional || mass.local_element(node.local_dofs[0]) <= 0)
+        const auto &node = nodes[k];
+        if (!node.frictional)
+          continue;
+        contact_state[k] = ContactState::free;
+        if (mass.local_element(node.local_dofs[0]) <= 0)
           continue;
         Tensor<1, dim> v, a;
         for (unsigned int c = 0; c < dim; ++c)
@@ -542,8 +633,11 @@ namespace MPM
             v[c] = velocity.local_element(node.local_dofs[c]);
             a[c] = acceleration.local_element(node.local_dofs[c]);
           }
-        a = frictional_acceleration(
-          v, a, node.normal, node.friction_coefficient, dt);
+        bool sticks = false;
+        a           = frictional_acceleration(
+          v, a, node.normal, node.friction_coefficient, dt, &sticks);
+        if (sticks)
+          contact_state[k] = ContactState::stuck;
         for (unsigned int c = 0; c < dim; ++c)
           acceleration.local_element(node.local_dofs[c]) = a[c];
       }

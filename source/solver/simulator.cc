@@ -368,8 +368,9 @@ namespace MPM
       Utilities::MPI::sum(lost_energy, mpi_communicator);
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
-    // 2: the removed points' energy appended (format 1 is still read).
-    const unsigned int  format      = 2;
+    // 2: the removed points' energy appended; 3: the walls' contact state
+    // (formats 1 and 2 are still read).
+    const unsigned int  format      = 3;
     const unsigned int  space_dim   = dim;
     std::uint64_t       stats_bytes = 0;
     if (statistics_file.is_open())
@@ -384,13 +385,18 @@ namespace MPM
         postprocessor_states.push_back(out.str());
       }
 
+    const auto contact = BoundaryConditions<dim>::merge(
+      Utilities::MPI::all_gather(mpi_communicator,
+                                 boundary_conditions.contact_locations()));
+
     std::ostringstream state;
     {
       boost::archive::binary_oarchive ar(state);
       ar << format << space_dim << n_points << n_cells << time << step
          << time_step << output_index << max_point_speed << removed_points
          << removed_mass << n_repartitions << stats_bytes << output_writer
-         << postprocessor_names << postprocessor_states << removed_energy;
+         << postprocessor_names << postprocessor_states << removed_energy
+         << contact[0] << contact[1];
     }
     return state.str();
   }
@@ -409,7 +415,7 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input((format == 1 || format == 2) && space_dim == dim,
+    check_input(format >= 1 && format <= 3 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -429,6 +435,10 @@ namespace MPM
       output_writer >> names >> postprocessor_states;
     if (format >= 2)
       ar >> removed_energy;
+    typename BoundaryConditions<dim>::ContactLocations contact;
+    if (format >= 3)
+      ar >> contact[0] >> contact[1];
+    boundary_conditions.set_contact(contact);
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
                            "postprocessors '" +
@@ -789,7 +799,10 @@ namespace MPM
         velocity_out.local_element(i) =
           m > 0 ? nodal_momentum.local_element(i) / m : 0.;
       }
-    boundary_conditions.project_velocity(velocity_out);
+    // The strain rate's velocity: a node the last nodal update held on its
+    // wall stays held (BoundaryConditions::Contact).
+    boundary_conditions.project_velocity(
+      velocity_out, BoundaryConditions<dim>::Contact::as_last_update);
   }
 
 
@@ -882,7 +895,7 @@ namespace MPM
     for (const unsigned int i : active_dofs)
       nodal_velocity_new.local_element(i) +=
         dt * nodal_acceleration.local_element(i);
-    boundary_conditions.project_velocity(nodal_velocity_new);
+    boundary_conditions.constrain_updated_velocity(nodal_velocity_new);
     // The acceleration consistent with the constrained velocity change
     // from u, so that the FLIP update of the points respects the
     // constraints too.

@@ -9,6 +9,7 @@
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,8 @@ namespace MPM
       Tensor<1, dim> normal;
       /// Friction coefficient.
       double friction_coefficient = 0;
+      /// The mesh vertex of the node.
+      Point<dim> location;
     };
 
     static void
@@ -105,13 +108,85 @@ namespace MPM
     setup(const BackgroundGrid<dim> &grid, const NodalVector &layout);
 
     /**
+     * Which frictional (unilateral) nodes a projection holds on their wall.
+     */
+    enum class Contact
+    {
+      /// Those moving into it (v . n > 0, n outward): the rule for a
+      /// velocity whose forces are not known yet.
+      by_velocity,
+      /// Those moving into it, and those the last nodal update
+      /// (constrain_updated_velocity()) held; a node that stuck in that
+      /// update is set to rest (its tangential velocity too). The rule for
+      /// the velocities from which strain rates are computed: a node gets
+      /// the motion the wall allowed it while the points moved.
+      as_last_update
+    };
+
+    /**
      * v <- P v + q at every constrained node: apply the constraints to a
      * nodal velocity field (local elements of a ghosted vector). A
-     * frictional node is projected only if it moves into its wall
-     * (v . n > 0, n outward).
+     * frictional node is projected by the rule @p contact.
+     *
+     * Why the strain rate needs the second rule: a node resting on its
+     * wall is held there by the nodal update (gravity presses it in), but
+     * the velocity the points bring back to it is a mass-weighted mean of
+     * their velocities, which also holds its neighbours' velocities. When
+     * the material above rebounds, that mean points away from the wall;
+     * left free, the node then shows a strain rate (compression) that no
+     * point's motion made, and never the opposite one, since a node moving
+     * into the wall is held. The ratchet pumped strain energy into an
+     * elastic block resting on a frictional floor until the stability
+     * monitor stopped it (within 100-200 steps with MUSL and USF, in 2D
+     * and 3D). Likewise a node that stuck by friction brings back a
+     * tangential velocity it did not have (FLIP points keep their own):
+     * counted in the strain, it made friction create energy.
      */
     void
-    project_velocity(NodalVector &velocity) const;
+    project_velocity(NodalVector  &velocity,
+                     const Contact contact = Contact::by_velocity) const;
+
+    /**
+     * The projection of the nodal update (the new nodal velocity after the
+     * forces, friction included): Contact::by_velocity, recording which
+     * frictional nodes it held for the next projections with
+     * Contact::as_last_update. Only a node whose new velocity would enter
+     * the wall is held: the wall can only push.
+     */
+    void
+    constrain_updated_velocity(NodalVector &velocity);
+
+    /**
+     * Where the last nodal update held frictional nodes on their walls:
+     * [0] the nodes that slid, [1] those that stuck.
+     */
+    using ContactLocations = std::array<std::vector<Point<dim>>, 2>;
+
+    /**
+     * The contact state of this rank's nodes (owned and ghost) by location,
+     * and setting it from such lists (of any ranks; nodes not listed are
+     * free). The state is kept through a new setup() (repartitioning moves
+     * nodes between ranks) and written to checkpoints, so that a resumed
+     * run continues bit for bit.
+     */
+    ContactLocations
+    contact_locations() const;
+
+    void
+    set_contact(const ContactLocations &locations);
+
+    /**
+     * The lists of several ranks as one.
+     */
+    static ContactLocations
+    merge(const std::vector<ContactLocations> &per_rank)
+    {
+      ContactLocations all;
+      for (const auto &lists : per_rank)
+        for (unsigned int i = 0; i < 2; ++i)
+          all[i].insert(all[i].end(), lists[i].begin(), lists[i].end());
+      return all;
+    }
 
     /**
      * Coulomb friction on the nodal acceleration, in each frictional node's
@@ -122,7 +197,7 @@ namespace MPM
     apply_friction(const NodalVector &mass,
                    const NodalVector &velocity,
                    NodalVector       &acceleration,
-                   const double       dt) const;
+                   const double       dt);
 
     /**
      * Friction in the local frame of one node: returns the corrected
@@ -142,7 +217,8 @@ namespace MPM
                             const Tensor<1, dim> &a,
                             const Tensor<1, dim> &n,
                             const double          mu,
-                            const double          dt);
+                            const double          dt,
+                            bool *const           sticks = nullptr);
 
     const AffineConstraints<double> &
     constraints() const
@@ -208,6 +284,14 @@ namespace MPM
     std::vector<Spec>            specs;
     AffineConstraints<double>    normal_constraints;
     std::vector<ConstrainedNode> nodes;
+    /// What the last nodal update did to each frictional node.
+    enum class ContactState : unsigned char
+    {
+      free,
+      sliding,
+      stuck
+    };
+    std::vector<ContactState> contact_state;
   };
 } // namespace MPM
 
