@@ -3,6 +3,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/column_collapse.h>
+#include <mpm/postprocess/energy_balance.h>
 #include <mpm/postprocess/flume.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
@@ -571,7 +572,7 @@ namespace MPM
     names()
     {
       return "vibrating bar|self-weight column|conservation|sliding block|"
-             "flume|column collapse";
+             "flume|column collapse|energy balance";
     }
 
 
@@ -598,6 +599,9 @@ namespace MPM
       prm.enter_subsection("column collapse");
       ColumnCollapse<dim>::declare_parameters(prm);
       prm.leave_subsection();
+      prm.enter_subsection("energy balance");
+      EnergyBalance<dim>::declare_parameters(prm);
+      prm.leave_subsection();
       prm.leave_subsection();
     }
 
@@ -619,6 +623,8 @@ namespace MPM
         p = std::make_unique<Flume<dim>>();
       else if (name == "column collapse")
         p = std::make_unique<ColumnCollapse<dim>>();
+      else if (name == "energy balance")
+        p = std::make_unique<EnergyBalance<dim>>();
       else
         throw InputError("Unknown postprocessor '" + name + "'.");
       prm.enter_subsection("Postprocess");
