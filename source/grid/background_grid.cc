@@ -7,6 +7,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/physics/transformations.h>
 
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
@@ -186,6 +187,13 @@ namespace MPM
         "and turned with it. Results in the mesh frame (positions, "
         "velocities, stresses in the output) are rotated; frame-independent "
         "ones (speeds, distances, energies) must not change.");
+      prm.declare_entry(
+        "Scene rotation axis",
+        "0, 0, 1",
+        Patterns::List(Patterns::Double(), 3, 3),
+        "3D only: the axis (any length but zero) about which 'Scene rotation "
+        "angle' turns the scene, counter-clockwise looking against it. In 2D "
+        "the rotation is always about z.");
     }
     prm.leave_subsection();
   }
@@ -204,6 +212,18 @@ namespace MPM
       generator_arguments  = prm.get("Generator arguments");
       n_global_refinements = prm.get_integer("Global refinements");
       rotation_angle = prm.get_double("Scene rotation angle") * M_PI / 180;
+      {
+        const auto axis = Utilities::string_to_double(
+          Utilities::split_string_list(prm.get("Scene rotation axis")));
+        for (unsigned int d = 0; d < 3; ++d)
+          rotation_axis[d] = axis[d];
+        check_input(rotation_axis.norm() > 0,
+                    "Mesh/Scene rotation axis must not be zero.");
+        check_input(dim == 3 || (rotation_axis[0] == 0 &&
+                                 rotation_axis[1] == 0),
+                    "Mesh/Scene rotation axis: in 2D the scene turns about "
+                    "z; leave the axis at 0, 0, 1.");
+      }
       vertex_perturbation = prm.get_double("Random vertex perturbation");
     }
     prm.leave_subsection();
@@ -270,9 +290,19 @@ namespace MPM
     rotation = unit_symmetric_tensor<dim>();
     if (rotation_angle != 0)
       {
-        rotation[0][0] = rotation[1][1] = std::cos(rotation_angle);
-        rotation[1][0]                  = std::sin(rotation_angle);
-        rotation[0][1]                  = -std::sin(rotation_angle);
+        if constexpr (dim == 3)
+          rotation = Physics::Transformations::Rotations::rotation_matrix_3d(
+            rotation_axis / rotation_axis.norm(), rotation_angle);
+        else
+          {
+            // About z, counter-clockwise seen from +z (an axis 0, 0, -1
+            // turns the other way).
+            const double angle =
+              rotation_axis[2] > 0 ? rotation_angle : -rotation_angle;
+            rotation[0][0] = rotation[1][1] = std::cos(angle);
+            rotation[1][0]                  = std::sin(angle);
+            rotation[0][1]                  = -std::sin(angle);
+          }
         GridTools::transform([this](const Point<dim> &x) {
           return to_mesh_frame(x);
         },

@@ -8,6 +8,7 @@
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -415,8 +416,11 @@ namespace MPM
      * the speed of the block (magnitude of its mean velocity) and the
      * distance travelled by its centre of mass against v and s at output
      * times, with relative errors, and the largest relative speed error
-     * over t >= 'Error from time'. mu is read from the bed boundary, so
-     * that a sweep over mu changes one parameter.
+     * over t >= 'Error from time', and the largest angle between the
+     * mean velocity and the dip direction (gravity's component along the
+     * bed): in 3D, on an oblique incline, the block must slide straight
+     * down it. mu is read from the bed boundary, so that a sweep over mu
+     * changes one parameter.
      */
     template <int dim>
     class SlidingBlock : public Postprocessor<dim>
@@ -458,6 +462,21 @@ namespace MPM
                             .friction_coefficient(bed);
         const double g  = simulator.get_time_stepping().gravity.norm();
         acceleration    = std::max(0., g * (std::sin(theta) - mu * std::cos(theta)));
+        // The dip direction: gravity's component along the bed, whose
+        // normal is the mean of the frictional nodes' normals (the bed is
+        // the scene's only frictional boundary and a plane).
+        Tensor<1, dim> normal;
+        for (const auto &node :
+             simulator.get_boundary_conditions().constrained_nodes())
+          if (node.frictional)
+            normal += node.normal;
+        normal = Utilities::MPI::sum(normal, simulator.get_mpi_communicator());
+        const Tensor<1, dim> gravity = simulator.get_time_stepping().gravity;
+        dip = normal.norm() > 0 ?
+                gravity - (gravity * normal) / normal.norm_square() * normal :
+                Tensor<1, dim>();
+        if (dip.norm() > 0)
+          dip /= dip.norm();
         const auto s    = simulator.compute_statistics();
         x0              = s.centre_of_mass;
         t0              = s.time;
@@ -485,6 +504,15 @@ namespace MPM
           {
             max_v_error = std::max(max_v_error, std::abs(v_error));
             max_d_error = std::max(max_d_error, std::abs(d_error));
+            if (acceleration > 0 && v > 0)
+              {
+                // atan2 of the off-dip and along-dip speeds: well
+                // conditioned at small angles, where acos is not.
+                const double along = s.mean_velocity * dip;
+                const double off   = (s.mean_velocity - along * dip).norm();
+                max_angle =
+                  std::max(max_angle, std::atan2(off, along) * 180 / M_PI);
+              }
             // Sums of the least-squares line v = v0 + a t over every step.
             fit[0] += 1;
             fit[1] += t;
@@ -518,6 +546,10 @@ namespace MPM
                << (sticks ? "abs" : "relative")
                << " distance error for t >= " << error_from
                << " s: " << max_d_error << '\n';
+        if (!sticks)
+          report << "max angle between the mean velocity and the dip "
+                    "direction for t >= "
+                 << error_from << " s (deg): " << max_angle << '\n';
         // The slope separates the acceleration, which friction decides,
         // from a constant velocity offset picked up in the first steps,
         // whose relative error decays like 1/t.
@@ -555,7 +587,8 @@ namespace MPM
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar & acceleration & t0 & x0 & max_v_error & max_d_error & fit & table & report_header;
+        ar & acceleration & t0 & x0 & max_v_error & max_d_error & fit & table &
+          report_header & dip & max_angle;
       }
 
     private:
@@ -563,6 +596,10 @@ namespace MPM
       std::string        bed;
       Point<dim>         x0;
       double             max_v_error = 0, max_d_error = 0;
+      /// Unit vector down the bed's steepest slope, and the largest angle
+      /// (degrees) between it and the block's mean velocity.
+      Tensor<1, dim>     dip;
+      double             max_angle = 0;
       std::array<double, 5> fit{};
       std::string        table, report_header;
     };

@@ -120,7 +120,8 @@ namespace MPM
     /**
      * @name Scene rotation.
      * The parameter file describes a scene in its own frame; "Mesh/Scene
-     * rotation angle" turns the whole scene (about the z axis in 3D) so
+     * rotation angle" turns the whole scene (about "Scene rotation axis"
+     * in 3D) so
      * that the same case can be run in any orientation: the mesh is rotated
      * when it is created, and every position, vector and tensor given in
      * the parameter file (point regions, gravity, initial velocity and
@@ -201,6 +202,8 @@ namespace MPM
     double vertex_perturbation = 0;
     /// Scene rotation angle (radians) and its matrix.
     double         rotation_angle = 0;
+    /// Axis of the scene rotation (3D; +z or -z in 2D).
+    Tensor<1, 3>   rotation_axis;
     Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
     double       min_cell_size        = 0;
     std::vector<double> cell_sizes;
