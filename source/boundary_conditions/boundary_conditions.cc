@@ -274,6 +274,9 @@ namespace MPM
       std::vector<double>                      values;
       bool                                     frictional = false;
       double                                   mu         = 0;
+      bool                                     edge_friction = false;
+      std::array<Tensor<1, dim>, 2>            edge_normals;
+      std::array<double, 2>                    edge_mu{};
     };
     std::vector<NodeConstraint> node_constraints;
     std::vector<bool>           visited(layout.locally_owned_size() +
@@ -378,6 +381,19 @@ namespace MPM
                     nc.frictional = true;
                     nc.mu         = cluster_mu[0];
                   }
+                else if (cluster_sum.size() == 2 &&
+                         (cluster_friction[0] || cluster_friction[1]))
+                  {
+                    // A 3D edge (2D nodes with two normals are fixed).
+                    nc.edge_friction = true;
+                    for (unsigned int j = 0; j < 2; ++j)
+                      {
+                        nc.edge_normals[j] =
+                          cluster_sum[j] / cluster_sum[j].norm();
+                        nc.edge_mu[j] =
+                          cluster_friction[j] ? cluster_mu[j] : 0.;
+                      }
+                  }
               }
             if (!nc.normals.empty())
               node_constraints.push_back(nc);
@@ -476,6 +492,9 @@ namespace MPM
         node.normal               = nc.normals[0];
         node.friction_coefficient = nc.mu;
         node.location             = nc.location;
+        node.edge_friction        = nc.edge_friction;
+        node.edge_normals         = nc.edge_normals;
+        node.edge_mu              = nc.edge_mu;
         nodes.push_back(node);
       }
     contact_state.assign(nodes.size(), ContactState::free);
@@ -494,19 +513,17 @@ namespace MPM
         Tensor<1, dim> v;
         for (unsigned int c = 0; c < dim; ++c)
           v[c] = velocity.local_element(node.local_dofs[c]);
-        if (node.frictional)
-          {
-            const ContactState last = contact == Contact::as_last_update ?
-                                        contact_state[k] :
-                                        ContactState::free;
-            // A frictional wall only pushes: a node moving away from it
-            // is free, unless the last nodal update held it.
-            if (v * node.normal <= 0 && last == ContactState::free)
-              continue;
-            // A node that stuck did not move at all.
-            if (last == ContactState::stuck)
-              v = Tensor<1, dim>();
-          }
+        const ContactState last = contact == Contact::as_last_update ?
+                                    contact_state[k] :
+                                    ContactState::free;
+        // A frictional wall only pushes: a node moving away from it is
+        // free, unless the last nodal update held it.
+        if (node.frictional && v * node.normal <= 0 &&
+            last == ContactState::free)
+          continue;
+        // A node that stuck did not move at all.
+        if (last == ContactState::stuck)
+          v = Tensor<1, dim>();
         v = node.projector * v + node.offset;
         for (unsigned int c = 0; c < dim; ++c)
           velocity.local_element(node.local_dofs[c]) = v[c];
@@ -518,6 +535,7 @@ namespace MPM
   void
   BoundaryConditions<dim>::constrain_updated_velocity(NodalVector &velocity)
   {
+    // Edge nodes are held bilaterally: apply_friction() set their state.
     for (unsigned int k = 0; k < nodes.size(); ++k)
       if (nodes[k].frictional)
         {
@@ -613,6 +631,49 @@ namespace MPM
 
 
   template <int dim>
+  Tensor<1, dim>
+  BoundaryConditions<dim>::edge_frictional_acceleration(
+    const Tensor<1, dim>                &v,
+    const Tensor<1, dim>                &a,
+    const std::array<Tensor<1, dim>, 2> &n,
+    const std::array<double, 2>         &mu,
+    const double                         dt,
+    bool *const                          sticks)
+  {
+    if (sticks != nullptr)
+      *sticks = false;
+    // Wall impulses lambda_j n_j that bring w onto the edge:
+    // G lambda = -N w with the Gram matrix G of the normals.
+    const Tensor<1, dim> w   = v + dt * a;
+    const double         g01 = n[0] * n[1];
+    const double         det = 1 - g01 * g01;
+    if (det <= 0)
+      return a;
+    const double r0 = -(n[0] * w), r1 = -(n[1] * w);
+    const std::array<double, 2> lambda = {{(r0 - g01 * r1) / det,
+                                           (r1 - g01 * r0) / det}};
+    double capacity = 0;
+    for (unsigned int j = 0; j < 2; ++j)
+      capacity += mu[j] * std::max(0., -lambda[j]);
+    if (capacity <= 0)
+      return a;
+    // Components along the edge (the free direction) and across it.
+    const auto along = [&](const Tensor<1, dim> &u) {
+      return u + ((n[0] * u) * (g01 * n[1] - n[0]) +
+                  (n[1] * u) * (g01 * n[0] - n[1])) /
+                   det;
+    };
+    const Tensor<1, dim> w_t   = along(w);
+    const double         speed = w_t.norm();
+    const Tensor<1, dim> w_t_new =
+      speed <= capacity ? Tensor<1, dim>() : (1. - capacity / speed) * w_t;
+    if (sticks != nullptr)
+      *sticks = speed <= capacity;
+    return (a - along(a)) + (w_t_new - along(v)) / dt;
+  }
+
+
+  template <int dim>
   void
   BoundaryConditions<dim>::apply_friction(const NodalVector &mass,
                                           const NodalVector &velocity,
@@ -622,7 +683,7 @@ namespace MPM
     for (unsigned int k = 0; k < nodes.size(); ++k)
       {
         const auto &node = nodes[k];
-        if (!node.frictional)
+        if (!node.frictional && !node.edge_friction)
           continue;
         contact_state[k] = ContactState::free;
         if (mass.local_element(node.local_dofs[0]) <= 0)
@@ -634,8 +695,11 @@ namespace MPM
             a[c] = acceleration.local_element(node.local_dofs[c]);
           }
         bool sticks = false;
-        a           = frictional_acceleration(
-          v, a, node.normal, node.friction_coefficient, dt, &sticks);
+        a           = node.frictional ?
+                        frictional_acceleration(
+                          v, a, node.normal, node.friction_coefficient, dt, &sticks) :
+                        edge_frictional_acceleration(
+                          v, a, node.edge_normals, node.edge_mu, dt, &sticks);
         if (sticks)
           contact_state[k] = ContactState::stuck;
         for (unsigned int c = 0; c < dim; ++c)

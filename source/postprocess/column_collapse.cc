@@ -77,13 +77,14 @@ namespace MPM
     {
       using Layout = PropertyLayout<dim>;
       // The edge of the deposit: a point stands for a square of side
-      // sqrt(V_p) (2D) around it.
+      // V_p^(1/dim) around it.
       std::array<double, 2> extremes{{-1e300, -1e300}};
       double                speed_sum = 0;
       for (const auto &point : simulator.get_particle_handler())
         {
           const auto   props = point.get_properties();
-          const double half  = 0.5 * std::sqrt(props[Layout::volume]);
+          const double half =
+            0.5 * std::pow(props[Layout::volume], 1. / dim);
           const auto   x     = point.get_location();
           extremes[0]        = std::max(extremes[0], x[0] + half);
           extremes[1]        = std::max(extremes[1], x[dim - 1] + half);
@@ -174,12 +175,19 @@ namespace MPM
                                        bin_width)));
           thickness[b] += point.get_properties()[Layout::volume] / bin_width;
         }
+      // In 3D the column fills a channel of width W = V0 / (L0 H0) (slip
+      // side walls): thickness is volume per bin width per channel width.
+      const double channel_width =
+        dim == 2 ? 1. : initial_volume / (width * initial_height);
       Utilities::MPI::sum(thickness,
                           simulator.get_mpi_communicator(),
                           thickness);
       double volume = 0;
-      for (const double t : thickness)
-        volume += t * bin_width;
+      for (double &t : thickness)
+        {
+          volume += t * bin_width;
+          t /= channel_width;
+        }
       // The points' volume follows det(I + dt grad v): with a dilation
       // angle of 0 it should stay nearly constant; what it gained is
       // numerical bulking, which thickens the deposit.
@@ -203,7 +211,7 @@ namespace MPM
              << " m, (L - L0)/L0: " << (deposit_front - width) / width << '\n';
       report << "## column collapse: final deposit, bins of " << bin_width
              << " m in x; thickness = point volume per bin width"
-             << (dim == 2 ? " (per unit width)" : "")
+             << (dim == 2 ? " (per unit width)" : " and channel width")
              << "\n# x centre (m)  thickness (m)\n";
       for (long b = 0; b < n_bins; ++b)
         report << std::setw(12) << (b + 0.5) * bin_width << std::setw(14)

@@ -11,6 +11,10 @@
 // 2. Coulomb friction in the node frame (frictional_acceleration): static,
 //    kinetic, stopping instead of reversing, and a node leaving the wall,
 //    each against the value the rule of doc/algorithm.md gives.
+// 3. Friction at a 3D edge node (edge_frictional_acceleration): a
+//    frictional bed against a slip side wall must act along the edge as
+//    the one-normal rule acts on a bed alone, whatever the velocity into
+//    the side wall; no friction where the bed pulls.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -133,6 +137,29 @@ namespace
               << "), expected (" << expected << ")\n";
     check((result - expected).norm() < 1e-12, what);
   }
+
+  void
+  edge_friction(const std::string    &what,
+                const Tensor<1, 3>   &v,
+                const Tensor<1, 3>   &a,
+                const Tensor<1, 3>   &expected,
+                const Tensor<1, 3>   &side_normal = Tensor<1, 3>({0., 1., 0.}))
+  {
+    const double                      dt = 0.01;
+    const std::array<Tensor<1, 3>, 2> n{{Tensor<1, 3>({0., 0., -1.}),
+                                         side_normal}};
+    const Tensor<1, 3> result =
+      MPM::BoundaryConditions<3>::edge_frictional_acceleration(
+        v, a, n, {{0.5, 0.}}, dt);
+    std::cout << "edge friction, " << what << ": v = (" << v << "), a = ("
+              << a << "), mu = 0.5 (bed), 0 (side wall (" << side_normal
+              << ")), dt = " << dt << "\n  a' = ("
+              << flush_to_zero(result[0], 1e-12) << ", "
+              << flush_to_zero(result[1], 1e-12) << ", "
+              << flush_to_zero(result[2], 1e-12) << "), expected ("
+              << expected << ")\n";
+    check((result - expected).norm() < 1e-10, what);
+  }
 } // namespace
 
 
@@ -169,6 +196,36 @@ main(int argc, char **argv)
            Tensor<1, 2>({2., 10.}),
            0.5,
            Tensor<1, 2>({2., 10.}));
+
+  // Bed reaction r = v.n/dt + a.n = 10 (capacity mu r dt = 0.05 m/s);
+  // along the edge (x) as the one-normal rule, across it (y, into the
+  // side wall) untouched: the projection removes it.
+  edge_friction("sliding along the edge, pressed into the side wall",
+                Tensor<1, 3>({1., 0., 0.}),
+                Tensor<1, 3>({2., 0.7, -10.}),
+                Tensor<1, 3>({-3., 0.7, -10.}));
+  edge_friction("static along the edge, demand 3 below capacity 5",
+                Tensor<1, 3>(),
+                Tensor<1, 3>({3., -4., -10.}),
+                Tensor<1, 3>({0., -4., -10.}));
+  edge_friction("the bed pulls (a.n < 0): no friction",
+                Tensor<1, 3>({1., 0., 0.}),
+                Tensor<1, 3>({2., 0.7, 10.}),
+                Tensor<1, 3>({2., 0.7, 10.}));
+  // A side wall leaning by 30 degrees (normal (0, cos 30, sin 30)), the
+  // node pushed into it: the edge is still x, and the wall's impulse has a
+  // downward part that the bed must take as well. Trial w = (1.02, 0.05,
+  // -0.1); on the edge y and z vanish: 0.05 + l_side cos 30 = 0 and
+  // -0.1 - l_bed + l_side sin 30 = 0, so -l_bed = 0.1 + 0.05 tan 30.
+  {
+    const double c = std::cos(M_PI / 6), s30 = std::sin(M_PI / 6);
+    const double capacity = 0.5 * (0.1 + 0.05 * s30 / c);
+    edge_friction("sliding along the edge of a leaning side wall",
+                  Tensor<1, 3>({1., 0., 0.}),
+                  Tensor<1, 3>({2., 5., -10.}),
+                  Tensor<1, 3>({(1.02 - capacity - 1.) / 0.01, 5., -10.}),
+                  Tensor<1, 3>({0., c, s30}));
+  }
 
   return UnitTest::summary();
 }

@@ -48,7 +48,13 @@ namespace MPM
    * otherwise the normals of all its slip/friction boundaries are
    * constrained, normals within 10 degrees of each other being merged into
    * their average. In 2D two different normals leave no free direction, so
-   * such a corner node is fixed. Friction acts only at nodes with a single
+   * such a corner node is fixed; in 3D so is a node with three. A 3D node
+   * with two normals (an edge where, e.g., a frictional bed meets a slip
+   * side wall) slides along the edge: its contact is bilateral, and if one
+   * of its walls is frictional, Coulomb friction acts on the velocity along
+   * the edge with that wall's normal reaction (before session 10 edge
+   * nodes had no friction: a 3D channel two cells wide then lost two
+   * thirds of its bed friction). Unilateral contact is for nodes with one
    * (possibly merged) normal.
    *
    * The normal constraints are held in an AffineConstraints object (rows
@@ -76,12 +82,21 @@ namespace MPM
       Tensor<2, dim> projector;
       /// Particular solution of the inhomogeneous constraints.
       Tensor<1, dim> offset;
-      /// Coulomb friction at this node?
+      /// Coulomb friction and unilateral contact at this node (a node with
+      /// one wall normal, of a frictional boundary)?
       bool frictional = false;
       /// Unit outward normal of the node's frame.
       Tensor<1, dim> normal;
       /// Friction coefficient.
       double friction_coefficient = 0;
+      /// A 3D edge node (two wall normals, one free direction) of which at
+      /// least one wall is frictional: the two normals (unit) and the
+      /// friction coefficient of each (0 for a slip wall). Friction acts on
+      /// the velocity along the edge with the frictional walls' reactions
+      /// (edge_frictional_acceleration()); the contact is bilateral.
+      bool                          edge_friction = false;
+      std::array<Tensor<1, dim>, 2> edge_normals;
+      std::array<double, 2>         edge_mu{};
       /// The mesh vertex of the node.
       Point<dim> location;
     };
@@ -212,6 +227,23 @@ namespace MPM
      * never reverses the motion. The normal component is left for the
      * projection. Exposed for unit tests.
      */
+    /**
+     * Friction at an edge node: the trial velocity w = v + dt a is
+     * brought onto the edge by wall impulses lambda_j n_j (the Gram system
+     * of the two outward normals); wall j pushes if lambda_j < 0, and the
+     * friction capacity is sum_j mu_j max(0, -lambda_j). Coulomb's law by
+     * backward Euler on w's component along the edge, as at a one-normal
+     * node; the normal parts are left for the projection. Exposed for unit
+     * tests.
+     */
+    static Tensor<1, dim>
+    edge_frictional_acceleration(const Tensor<1, dim>                &v,
+                                 const Tensor<1, dim>                &a,
+                                 const std::array<Tensor<1, dim>, 2> &n,
+                                 const std::array<double, 2>         &mu,
+                                 const double                         dt,
+                                 bool *const sticks = nullptr);
+
     static Tensor<1, dim>
     frictional_acceleration(const Tensor<1, dim> &v,
                             const Tensor<1, dim> &a,

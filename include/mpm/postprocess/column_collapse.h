@@ -11,11 +11,13 @@ namespace MPM
   namespace Postprocessors
   {
     /**
-     * Collapse of a granular column on a flat rough base (2D, the base at
-     * y = 'Base elevation', a wall at x = 'Wall position', the column of
-     * width L0 and height H0 against it, flowing towards +x): the classical
-     * test of granular flow models against the runout scalings of
-     * experiments (doc/column_collapse.md).
+     * Collapse of a granular column on a flat rough base (the base at
+     * y = 'Base elevation' in 2D, z in 3D, a wall at x = 'Wall position',
+     * the column of width L0 and height H0 against it, flowing towards +x;
+     * in 3D the column fills a channel between slip side walls, and its
+     * width across the channel is taken from its initial volume): the
+     * classical test of granular flow models against the runout scalings
+     * of experiments (doc/column_collapse.md).
      *
      * At output times: the front (the largest x of a point plus half its
      * spacing sqrt(V_p), i.e. the edge of the deposit) and the height (the
