@@ -12,6 +12,7 @@
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 #include <mpm/grid/background_grid.h>
+#include <mpm/grid/terrain.h>
 
 #include <array>
 #include <filesystem>
@@ -131,10 +132,13 @@ namespace MPM
     {
       prm.declare_entry("Source",
                         "generator",
-                        Patterns::Selection("gmsh|generator"),
+                        Patterns::Selection("gmsh|generator|terrain"),
                         "Where the background mesh comes from: a Gmsh file "
-                        "('gmsh', see 'Gmsh file') or a deal.II GridGenerator "
-                        "function ('generator', see 'Generator name').");
+                        "('gmsh', see 'Gmsh file'), a deal.II GridGenerator "
+                        "function ('generator', see 'Generator name'), or "
+                        "terrain-following hexahedra over a digital "
+                        "elevation model ('terrain', 3D, see the subsection "
+                        "Terrain).");
       prm.declare_entry("Gmsh file",
                         "",
                         Patterns::FileName(),
@@ -158,6 +162,7 @@ namespace MPM
         "corner : colorize). With colorize = true the boundary ids of a "
         "rectangle are 0 (x = x_min), 1 (x = x_max), 2 (y = y_min), 3 "
         "(y = y_max).");
+      TerrainMesh::declare_parameters(prm);
       prm.declare_entry("Global refinements",
                         "0",
                         Patterns::Integer(0, 12),
@@ -210,6 +215,7 @@ namespace MPM
       mesh_file            = resolve_path(input_directory, prm.get("Gmsh file"));
       generator_name       = prm.get("Generator name");
       generator_arguments  = prm.get("Generator arguments");
+      terrain.parse_parameters(prm, input_directory);
       n_global_refinements = prm.get_integer("Global refinements");
       rotation_angle = prm.get_double("Scene rotation angle") * M_PI / 180;
       {
@@ -230,6 +236,10 @@ namespace MPM
     if (source == "gmsh")
       check_input(!mesh_file.empty(),
                   "Mesh/Source = gmsh, but 'Mesh/Gmsh file' is empty.");
+    if (source == "terrain")
+      check_input(dim == 3,
+                  "Mesh/Source = terrain builds hexahedra over an elevation "
+                  "model: set Dimension = 3.");
   }
 
 
@@ -257,6 +267,11 @@ namespace MPM
             throw InputError("Cannot read the mesh file '" + mesh_file +
                              "': " + Utilities::trim(s.str()));
           }
+      }
+    else if (source == "terrain")
+      {
+        if constexpr (dim == 3)
+          terrain.create(triangulation);
       }
     else if (generator_name == "subdivided_hyper_rectangle")
       create_subdivided_hyper_rectangle();

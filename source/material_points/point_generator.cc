@@ -44,8 +44,14 @@ namespace MPM
 
   template <int dim>
   bool
-  PointGenerator<dim>::Region::contains(const Point<dim> &p) const
+  PointGenerator<dim>::Region::contains(const Point<dim> &p,
+                                        const double      h) const
   {
+    if (type == "function")
+      {
+        inside->set_time(h);
+        return inside->value(p) > 0;
+      }
     if (type == "box")
       {
         for (unsigned int d = 0; d < dim; ++d)
@@ -98,10 +104,25 @@ namespace MPM
         prm.declare_entry(
           "Type",
           "box",
-          Patterns::Selection("box|polygon|cells|file"),
+          Patterns::Selection("box|polygon|cells|function|file"),
           "How the region is given: 'box' (see 'Box'), 'polygon' (2D, see "
           "'Polygon'), 'cells' (all cells whose material id is 'Cell "
-          "material id'), or 'file' (one point per line, see 'Point file').");
+          "material id'), 'function' (where 'Inside function' is positive), "
+          "or 'file' (one point per line, see 'Point file').");
+        prm.declare_entry(
+          "Inside function",
+          "1",
+          Patterns::Anything(),
+          "Type = function: an expression in x, y (, z) and h, the height "
+          "above the ground (on a terrain mesh z - z_g(x, y); else the last "
+          "coordinate), positive inside the region, e.g. a soil layer 2 m "
+          "deep over a footprint: 'h < 2 && x > 10 && x < 30 ? 1 : -1'. "
+          "Coordinates are in the scene's frame.");
+        prm.declare_entry("Inside function constants",
+                          "",
+                          Patterns::Anything(),
+                          "Constants of 'Inside function': 'name=value, "
+                          "...'.");
         prm.declare_entry("Box",
                           dim == 2 ? "0, 0 : 1, 1" : "0, 0, 0 : 1, 1, 1",
                           Patterns::Anything(),
@@ -214,6 +235,56 @@ namespace MPM
           }
         else if (r.type == "cells")
           r.cell_material_id = prm.get_integer("Cell material id");
+        else if (r.type == "function")
+          {
+            const std::string expression = prm.get("Inside function");
+            const std::string where =
+              path + "Inside function = '" + expression + "'";
+            std::map<std::string, double> constants;
+            for (const auto &c : Utilities::split_string_list(
+                   prm.get("Inside function constants"), ','))
+              {
+                const auto parts = Utilities::split_string_list(c, '=');
+                check_input(parts.size() == 2,
+                            path + "Inside function constants: '" + c +
+                              "' is not 'name=value'.");
+                try
+                  {
+                    constants[parts[0]] = Utilities::string_to_double(parts[1]);
+                  }
+                catch (...)
+                  {
+                    throw InputError(path + "Inside function constants: '" +
+                                     parts[1] + "' is not a number.");
+                  }
+              }
+            // The height above the ground takes the place of the parser's
+            // time variable (the last one).
+            r.inside = std::make_shared<FunctionParser<dim>>(1);
+            try
+              {
+                r.inside->initialize(dim == 2 ? "x,y,h" : "x,y,z,h",
+                                     expression,
+                                     constants,
+                                     true);
+                r.inside->value(Point<dim>());
+              }
+            catch (const ExceptionBase &e)
+              {
+                std::ostringstream info;
+                e.print_info(info);
+                throw InputError(where + " cannot be evaluated:\n" +
+                                 info.str());
+              }
+            catch (const std::exception &e)
+              {
+                throw InputError(where + " cannot be evaluated: " + e.what());
+              }
+            catch (...)
+              {
+                throw InputError(where + " cannot be parsed.");
+              }
+          }
         else
           {
             r.file_name = resolve_path(input_directory, prm.get("Point file"));
@@ -361,7 +432,9 @@ namespace MPM
                             sub_cell_centres,
                             update_quadrature_points | update_JxW_values);
 
+    // Cells outside this box are skipped (a function region has none).
     BoundingBox<dim> region_box;
+    const bool has_box = region.type == "box" || region.type == "polygon";
     if (region.type == "box")
       region_box = BoundingBox<dim>({region.box_lower, region.box_upper});
     else if (region.type == "polygon")
@@ -399,8 +472,8 @@ namespace MPM
                   vertices.push_back(grid.to_scene_frame(cell->vertex(v)));
                 cell_box = BoundingBox<dim>(vertices);
               }
-            if (region_box.get_neighbor_type(cell_box) ==
-                NeighborType::not_neighbors)
+            if (has_box && region_box.get_neighbor_type(cell_box) ==
+                             NeighborType::not_neighbors)
               continue;
           }
 
@@ -408,7 +481,8 @@ namespace MPM
         for (const unsigned int q : fe_values.quadrature_point_indices())
           {
             const Point<dim> &x = fe_values.quadrature_point(q);
-            if (region.contains(grid.to_scene_frame(x)))
+            if (region.contains(grid.to_scene_frame(x),
+                                grid.height_above_ground(x)))
               points.push_back({x,
                                 sub_cell_centres.point(q),
                                 cell,

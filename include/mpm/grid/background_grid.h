@@ -13,6 +13,7 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <mpm/grid/bilinear_cell_map.h>
+#include <mpm/grid/terrain.h>
 
 #include <array>
 #include <string>
@@ -165,6 +166,20 @@ namespace MPM
     }
     /** @} */
 
+    /**
+     * Height of @p x (mesh frame) above the ground: z - z_g(x, y) on a
+     * terrain mesh (Mesh/Source = terrain), the last coordinate otherwise.
+     * Point regions use it ('h' in a region function), so that a soil
+     * layer of given depth on a hillside is one expression.
+     */
+    double
+    height_above_ground(const Point<dim> &x) const
+    {
+      if (source == "terrain")
+        return x[dim - 1] - terrain.dem.elevation(x[0], dim == 3 ? x[1] : 0.);
+      return x[dim - 1];
+    }
+
     parallel::distributed::Triangulation<dim> triangulation;
     MappingQ1<dim>                            mapping;
     FESystem<dim>                             fe;
@@ -195,6 +210,8 @@ namespace MPM
     std::string  source;
     std::string  mesh_file;
     std::string  generator_name;
+    /// Mesh/Source = terrain: the elevation model and the layers over it.
+    TerrainMesh  terrain;
     std::string  generator_arguments;
     unsigned int n_global_refinements = 0;
     /// Fraction of the shortest adjacent edge by which interior vertices

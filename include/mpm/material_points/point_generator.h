@@ -1,6 +1,7 @@
 #ifndef mpm_material_points_point_generator_h
 #define mpm_material_points_point_generator_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/parsed_function.h>
 #include <deal.II/base/point.h>
@@ -89,9 +90,13 @@ namespace MPM
       bool                        automatic_surface = true;
       std::shared_ptr<Functions::ParsedFunction<dim>> initial_velocity;
       std::shared_ptr<Functions::ParsedFunction<dim>> initial_stress_function;
+      /// Type = function: positive inside; its time variable is h.
+      std::shared_ptr<FunctionParser<dim>> inside;
 
+      /// Whether the point @p p (scene frame), at height @p h above the
+      /// ground, belongs to the region (cells: always).
       bool
-      contains(const Point<dim> &p) const;
+      contains(const Point<dim> &p, const double h) const;
     };
 
     struct NewPoint

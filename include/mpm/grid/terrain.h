@@ -1,0 +1,81 @@
+#ifndef mpm_grid_terrain_h
+#define mpm_grid_terrain_h
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/grid/tria.h>
+
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * A digital elevation model (DEM) on a regular grid: ground elevation
+   * z_g(x, y) between its nodes by bilinear interpolation. Read from an
+   * ESRI ASCII grid (.asc), the plain-text raster format every GIS (GDAL,
+   * QGIS, ArcGIS) writes: a header of ncols, nrows, xllcorner|xllcenter,
+   * yllcorner|yllcenter, cellsize and optionally NODATA_value, then nrows
+   * lines of ncols elevations, the northernmost (largest y) first. Values
+   * are taken at cell centres (x = xll + (i + 1/2) cellsize for a
+   * 'corner' header). A GeoTIFF converts to it with
+   * `gdal_translate -of AAIGrid dem.tif dem.asc` (doc/terrain.md says why
+   * the code reads the text format itself instead of linking GDAL).
+   */
+  class ElevationModel
+  {
+  public:
+    /**
+     * Read @p file; an InputError names the file, the line and what is
+     * wrong (missing header entry, too few values, a NODATA value inside
+     * the grid, a non-number).
+     */
+    void
+    read_esri_ascii(const std::string &file);
+
+    /// Ground elevation at (x, y), bilinear between the grid's nodes;
+    /// clamped to the grid outside it.
+    double
+    elevation(const double x, const double y) const;
+
+    unsigned int n_x = 0, n_y = 0;
+    /// Coordinates of the node (0, 0) (south-west) and the spacing.
+    double x0 = 0, y0 = 0, spacing = 1;
+    /// Elevations, row-major from the south: z[j * n_x + i] at
+    /// (x0 + i spacing, y0 + j spacing).
+    std::vector<double> z;
+  };
+
+
+  /**
+   * The background mesh of a terrain: the DEM's footprint (optionally every
+   * k-th node) meshed by hexahedra in terrain-following layers, from the
+   * ground up to 'Height above ground': every vertical line of vertices
+   * runs from z_g(x, y) to z_g(x, y) + H, so each cell is an isoparametric
+   * hexahedron whose bottom face lies on the ground. Boundary ids as a
+   * colorized box: 0 (x min), 1 (x max), 2 (y min), 3 (y max), 4 (the
+   * ground), 5 (the top).
+   */
+  struct TerrainMesh
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm, const std::string &input_directory);
+
+    /// Read the elevation model and build the mesh (3D only).
+    void
+    create(Triangulation<3> &triangulation);
+
+    std::string    dem_file;
+    unsigned int   stride = 1, layers = 4;
+    double         height = 1;
+    /// The ground, once create() has read it.
+    ElevationModel dem;
+  };
+} // namespace MPM
+
+#endif

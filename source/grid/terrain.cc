@@ -1,0 +1,216 @@
+#include <deal.II/base/utilities.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <mpm/base/input_deck.h>
+#include <mpm/base/input_error.h>
+#include <mpm/grid/terrain.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace MPM
+{
+  void
+  ElevationModel::read_esri_ascii(const std::string &file)
+  {
+    std::ifstream in(file);
+    check_input(static_cast<bool>(in),
+                "Cannot open the elevation model '" + file + "'.");
+    // The header: keyword value lines, case-insensitive, until the first
+    // line that starts with a number.
+    std::map<std::string, double> header;
+    std::string                   line;
+    unsigned int                  line_number = 0;
+    std::streampos                data_start  = in.tellg();
+    while (std::getline(in, line))
+      {
+        ++line_number;
+        std::istringstream words(line);
+        std::string        key;
+        if (!(words >> key))
+          {
+            data_start = in.tellg();
+            continue;
+          }
+        if (std::isdigit(static_cast<unsigned char>(key[0])) || key[0] == '-' ||
+            key[0] == '+' || key[0] == '.')
+          break;
+        std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) {
+          return std::tolower(c);
+        });
+        double value = 0;
+        check_input(static_cast<bool>(words >> value),
+                    "Elevation model '" + file + "', line " +
+                      std::to_string(line_number) + ": header entry '" + key +
+                      "' has no numeric value.");
+        header[key] = value;
+        data_start  = in.tellg();
+      }
+    for (const std::string key : {"ncols", "nrows", "cellsize"})
+      check_input(header.count(key) == 1,
+                  "Elevation model '" + file + "': the ESRI ASCII header has "
+                  "no '" + key + "'.");
+    const bool centre = header.count("xllcenter") == 1;
+    check_input((centre && header.count("yllcenter") == 1) ||
+                  (header.count("xllcorner") == 1 &&
+                   header.count("yllcorner") == 1),
+                "Elevation model '" + file + "': the header needs xllcorner "
+                "and yllcorner (or xllcenter and yllcenter).");
+    const double ncols = header["ncols"], nrows = header["nrows"];
+    check_input(ncols >= 2 && nrows >= 2 && ncols == std::floor(ncols) &&
+                  nrows == std::floor(nrows) && ncols * nrows < 1e9,
+                "Elevation model '" + file + "': ncols and nrows must be "
+                "integers of at least 2.");
+    spacing = header["cellsize"];
+    check_input(spacing > 0,
+                "Elevation model '" + file + "': cellsize must be positive.");
+    n_x = static_cast<unsigned int>(ncols);
+    n_y = static_cast<unsigned int>(nrows);
+    // Nodes at the cell centres.
+    x0 = centre ? header["xllcenter"] : header["xllcorner"] + 0.5 * spacing;
+    y0 = centre ? header["yllcenter"] : header["yllcorner"] + 0.5 * spacing;
+    const bool   has_nodata = header.count("nodata_value") == 1;
+    const double nodata     = has_nodata ? header["nodata_value"] : 0;
+
+    in.clear();
+    in.seekg(data_start);
+    z.assign(std::size_t(n_x) * n_y, 0.);
+    std::string word;
+    for (unsigned int row = 0; row < n_y; ++row)
+      for (unsigned int i = 0; i < n_x; ++i)
+        {
+          check_input(static_cast<bool>(in >> word),
+                      "Elevation model '" + file + "': " +
+                        std::to_string(std::size_t(n_x) * n_y) +
+                        " elevations expected (ncols x nrows), the file "
+                        "ends after " +
+                        std::to_string(std::size_t(row) * n_x + i) + ".");
+          double value = 0;
+          try
+            {
+              std::size_t used = 0;
+              value            = std::stod(word, &used);
+              if (used != word.size())
+                throw std::invalid_argument(word);
+            }
+          catch (const std::exception &)
+            {
+              throw InputError("Elevation model '" + file + "': '" + word +
+                               "' (row " + std::to_string(row + 1) +
+                               ", column " + std::to_string(i + 1) +
+                               ") is not a number.");
+            }
+          check_input(!has_nodata || value != nodata,
+                      "Elevation model '" + file + "': row " +
+                        std::to_string(row + 1) + ", column " +
+                        std::to_string(i + 1) +
+                        " holds the NODATA value; the mesh needs the ground "
+                        "everywhere in the grid (crop or fill the DEM).");
+          // Rows run from the north: row 0 is j = n_y - 1.
+          z[std::size_t(n_y - 1 - row) * n_x + i] = value;
+        }
+    check_input(!(in >> word),
+                "Elevation model '" + file + "': more values than ncols x "
+                "nrows = " + std::to_string(std::size_t(n_x) * n_y) + ".");
+  }
+
+
+  double
+  ElevationModel::elevation(const double x, const double y) const
+  {
+    const double s  = std::clamp((x - x0) / spacing, 0., n_x - 1.);
+    const double t  = std::clamp((y - y0) / spacing, 0., n_y - 1.);
+    const auto   i  = std::min<unsigned int>(n_x - 2, static_cast<unsigned int>(s));
+    const auto   j  = std::min<unsigned int>(n_y - 2, static_cast<unsigned int>(t));
+    const double fs = s - i, ft = t - j;
+    const auto   at = [&](const unsigned int a, const unsigned int b) {
+      return z[std::size_t(b) * n_x + a];
+    };
+    return (1 - fs) * (1 - ft) * at(i, j) + fs * (1 - ft) * at(i + 1, j) +
+           (1 - fs) * ft * at(i, j + 1) + fs * ft * at(i + 1, j + 1);
+  }
+
+
+  void
+  TerrainMesh::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Terrain");
+    prm.declare_entry("Elevation model",
+                      "",
+                      Patterns::FileName(),
+                      "ESRI ASCII grid (.asc) of the ground elevation (m); "
+                      "a relative name is read relative to the .prm file. "
+                      "Mesh/Source = terrain builds the mesh on it (3D).");
+    prm.declare_entry("Node stride",
+                      "1",
+                      Patterns::Integer(1),
+                      "Mesh vertices on every k-th node of the elevation "
+                      "grid in x and y (the cell size is k times the grid "
+                      "spacing; (ncols - 1) and (nrows - 1) must be "
+                      "multiples of k).");
+    prm.declare_entry("Height above ground",
+                      "1",
+                      Patterns::Double(0),
+                      "Thickness (m) of the meshed layer over the ground, "
+                      "measured vertically: material must stay below it.");
+    prm.declare_entry("Layers",
+                      "4",
+                      Patterns::Integer(1),
+                      "Number of cells across that thickness (terrain-"
+                      "following layers).");
+    prm.leave_subsection();
+  }
+
+
+  void
+  TerrainMesh::parse_parameters(ParameterHandler  &prm,
+                                const std::string &input_directory)
+  {
+    prm.enter_subsection("Terrain");
+    dem_file = resolve_path(input_directory, prm.get("Elevation model"));
+    stride   = prm.get_integer("Node stride");
+    height   = prm.get_double("Height above ground");
+    layers   = prm.get_integer("Layers");
+    prm.leave_subsection();
+    check_input(height > 0,
+                "Mesh/Terrain/Height above ground must be positive.");
+  }
+
+
+  void
+  TerrainMesh::create(Triangulation<3> &triangulation)
+  {
+    check_input(!dem_file.empty(),
+                "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
+                "is empty.");
+    dem.read_esri_ascii(dem_file);
+    const ElevationModel &model = dem;
+    check_input((model.n_x - 1) % stride == 0 && (model.n_y - 1) % stride == 0,
+                "Mesh/Terrain/Node stride = " + std::to_string(stride) +
+                  " must divide ncols - 1 = " + std::to_string(model.n_x - 1) +
+                  " and nrows - 1 = " + std::to_string(model.n_y - 1) +
+                  " of '" + dem_file + "'.");
+    const std::vector<unsigned int> repetitions = {(model.n_x - 1) / stride,
+                                                   (model.n_y - 1) / stride,
+                                                   layers};
+    const Point<3> lower(model.x0, model.y0, 0.);
+    const Point<3> upper(model.x0 + (model.n_x - 1) * model.spacing,
+                         model.y0 + (model.n_y - 1) * model.spacing,
+                         1.);
+    GridGenerator::subdivided_hyper_rectangle(
+      triangulation, repetitions, lower, upper, true);
+    // The unit thickness becomes the terrain-following layer: the vertices
+    // of each vertical line sit on DEM nodes, so the ground is the DEM
+    // (piecewise bilinear over each cell's bottom face).
+    GridTools::transform(
+      [&](const Point<3> &p) {
+        return Point<3>(p[0], p[1], model.elevation(p[0], p[1]) + p[2] * height);
+      },
+      triangulation);
+  }
+} // namespace MPM
