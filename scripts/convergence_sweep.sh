@@ -11,13 +11,17 @@
 #     20, 40, 80 cells across its 0.1 m width: the whole-column L2 error of
 #     sigma_yy against the exact finite-strain solution and the column
 #     height's error relative to the settlement (about 5 minutes);
-#  3. with the argument 'collapse': the a = 2 granular column collapse
+#  3. with the argument 'locking': volumetric locking, the a = 2 collapse
+#     (5 mm) and the flume (prm/flume_usgs.prm) with 1, 2 and 3 points per
+#     cell per direction, 'Volumetric strain averaging' none and cell
+#     (doc/locking.csv; about 15 minutes), instead of 4.;
+#  4. with the argument 'collapse': the a = 2 granular column collapse
 #     (prm/column_collapse.prm as shipped) on 5, 2.5 and 1.25 mm meshes
 #     (about 1.5 hours; 'collapse-quick' stops at 2.5 mm).
 # Writes doc/convergence_bar.csv, doc/convergence_column.csv (and
 # doc/convergence_collapse.csv) and
 # doc/convergence.png.
-# Usage: scripts/convergence_sweep.sh [collapse|collapse-quick]
+# Usage: scripts/convergence_sweep.sh [collapse|collapse-quick|locking]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
@@ -32,6 +36,8 @@ done_field() {  # log, awk program on the Done line
 }
 
 csv="$MPM_ROOT/doc/convergence_bar.csv"
+column_csv="$MPM_ROOT/doc/convergence_column.csv"
+if [ "${1:-}" != locking ]; then
 echo "weights,distortion,n,points,max_vcm_error,period_error,status,steps,step_wall_s,particle_steps_per_s" > "$csv"
 for distortion in 0 0.3; do
   for n in 1 2 4 8 16; do
@@ -63,7 +69,6 @@ for distortion in 0 0.3; do
 done
 
 # The self-weight column at large strain: base prm + the large-strain test.
-column_csv="$MPM_ROOT/doc/convergence_column.csv"
 echo "weights,n,points,l2_error,height_error_over_settlement,status,steps,step_wall_s,particle_steps_per_s" > "$column_csv"
 for n in 5 10 20 40 80; do
   for weights in linear cpdi; do
@@ -84,6 +89,48 @@ for n in 5 10 20 40 80; do
       "$(done_field "$out/$name.log" '{s = $0; sub(/.* s\), /, "", s); sub(/ particle-steps.*/, "", s); print s}')" | tee -a "$column_csv"
   done
 done
+
+fi
+
+if [ "${1:-}" = locking ]; then
+  lcsv="$MPM_ROOT/doc/locking.csv"
+  echo "scene,points_per_cell,averaging,runout_or_peak,final_height_or_peak_time,rest_time_s,front_m,volume_end_over_start,status,step_wall_s" > "$lcsv"
+  for ppc in 1 2 3; do
+    for averaging in none cell; do
+      name="locking-collapse-p$ppc-$averaging"
+      status=ok
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/column_collapse.prm" \
+        --set "Material points/column/Points per cell=$ppc" \
+        --set "Time stepping/Volumetric strain averaging=$averaging" \
+        --set "Output/Write particles=false" \
+        --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1 || status=failed
+      report="$out/$name/report.txt"
+      stop=$(grep -E "^mean speed below" "$report" 2>/dev/null | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
+      printf "collapse,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$ppc" "$averaging" \
+        "$(report_value "$report" 'runout of the deposit')" \
+        "$(report_value "$report" 'final height H_inf/L0')" "${stop:-}" \
+        "$(report_value "$report" 'runout (L_inf')" \
+        "$(report_value "$report" 'total point volume')" "$status" \
+        "$(done_field "$out/$name.log" '{s = $0; sub(/.*\(steps /, "", s); sub(/ s\).*/, "", s); print s}')" | tee -a "$lcsv"
+      name="locking-flume-p$ppc-$averaging"
+      status=ok
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/flume_usgs.prm" \
+        --set "Material points/sand/Points per cell=$ppc" \
+        --set "Time stepping/Volumetric strain averaging=$averaging" \
+        --set "Output/Write particles=false" \
+        --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1 || status=failed
+      report="$out/$name/report.txt"
+      peak=$(grep '^peak mean speed' "$report" 2>/dev/null || true)
+      rest=$(grep '^front within' "$report" 2>/dev/null | sed -E 's/.*from t = ([0-9.e+-]+) s.*/\1/' || true)
+      front=$(grep '^final front' "$report" 2>/dev/null | sed -E 's/final front: s = ([0-9.e+-]+) m.*/\1/' || true)
+      printf "flume,%s,%s,%s,%s,%s,%s,,%s,%s\n" "$ppc" "$averaging" \
+        "$(echo "$peak" | sed -E 's/.*: ([0-9.e+-]+) m\/s.*/\1/')" \
+        "$(echo "$peak" | sed -E 's/.*t = ([0-9.e+-]+) s.*/\1/')" "${rest:-}" "${front:-}" "$status" \
+        "$(done_field "$out/$name.log" '{s = $0; sub(/.*\(steps /, "", s); sub(/ s\).*/, "", s); print s}')" | tee -a "$lcsv"
+    done
+  done
+  exit 0
+fi
 
 if [ "${1:-}" = collapse ] || [ "${1:-}" = collapse-quick ]; then
   meshes="0.005 0.0025 0.00125"
