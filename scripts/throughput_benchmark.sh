@@ -16,11 +16,13 @@ mkdir -p "$out"
 csv="$MPM_ROOT/doc/throughput.csv"
 echo "model,points,cells,mesh_factor,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s" > "$csv"
 
-# run MODEL POINTS MESH_FACTOR: the block has POINTS points (2 x 2 per cell,
-# side 1 m); the mesh is MESH_FACTOR times the block's cells per side, twice
-# as wide as the block at least.
+# run MODEL POINTS MESH_FACTOR [WEIGHTS]: the block has POINTS points
+# (2 x 2 per cell, side 1 m); the mesh is MESH_FACTOR times the block's
+# cells per side, twice as wide as the block at least; WEIGHTS the
+# particle-grid weights (linear, or cpdi: then the model column reads
+# "MODEL (cpdi)").
 run() {
-  local model="$1" points="$2" factor="$3"
+  local model="$1" points="$2" factor="$3" weights="${4:-linear}"
   # Linear elastic: USF with FLIP. Mohr-Coulomb: the flume's MUSL with PIC
   # (with USF and FLIP the slumping block gains energy and the stability
   # check stops it at 0.8 s; doc/performance.md).
@@ -34,16 +36,19 @@ run() {
   # dt = 0.5 h / c with c = 86.5 m/s (E 1e7, nu 0.3, rho 1800).
   h=$(awk -v c="$block_cells" 'BEGIN { print 1 / c }')
   end_time=$(awk -v h="$h" -v s="$steps" 'BEGIN { print s * 0.5 * h / 86.49 * 0.999 }')
-  name="$model-$points-$factor"
+  name="$model-$points-$factor-$weights"
   "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/throughput.prm" \
     --set "Mesh/Generator arguments={$mesh_cells, $mesh_cells} : 0, 0 : $side, $side : true" \
     --set "Material points/block/Box=0, 0 : 1, 1" \
     --set "Materials/block/Model=$model" \
     --set "Time stepping/Update scheme=$scheme" \
     --set "Transfer/FLIP fraction=$flip" \
+    --set "Transfer/Particle-grid weights=$weights" \
     --set "Time stepping/End time=$end_time" \
     --set "Output/Directory=$out/$name" > "$out/$name.log"
-  awk -v model="$model" -v points="$points" -v cells="$(( mesh_cells * mesh_cells ))" \
+  local label="$model"
+  [ "$weights" = linear ] || label="$model ($weights)"
+  awk -v model="$label" -v points="$points" -v cells="$(( mesh_cells * mesh_cells ))" \
       -v factor="$factor" '
     /^Done:/ { n_steps = $2; n_points = $4
                stepping = $0; sub(/.*\(steps /, "", stepping); sub(/ s\).*/, "", stepping) }
@@ -66,6 +71,10 @@ for model in "linear elastic" "mohr coulomb"; do
   for points in ${MPM_THROUGHPUT_POINTS:-1000 10000 100000 1000000}; do
     run "$model" "$points" 2
   done
+done
+# CPDI weights (doc/convergence.md): the same block, linear elastic.
+for points in ${MPM_THROUGHPUT_POINTS:-1000 10000 100000 1000000}; do
+  run "linear elastic" "$points" 2 cpdi
 done
 # Empty mesh: the same 1e4 points in a mesh with 100 times the cells.
 run "linear elastic" 10000 20
