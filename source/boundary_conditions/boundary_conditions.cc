@@ -584,7 +584,8 @@ namespace MPM
     };
     for (unsigned int k = 0; k < nodes.size(); ++k)
       contact_state[k] =
-        !nodes[k].frictional           ? ContactState::free :
+        !(nodes[k].frictional || nodes[k].edge_friction) ?
+                                         ContactState::free :
         contains(1, nodes[k].location) ? ContactState::stuck :
         contains(0, nodes[k].location) ? ContactState::sliding :
                                          ContactState::free;
