@@ -11,7 +11,7 @@ ratios="${1:-0.5 1 2 3 4 6}"
 out="output-column-collapse-sweep"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/column_collapse.csv"
-echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s" > "$csv"
+echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start" > "$csv"
 L0=0.1
 h=0.005
 for a in $ratios; do
@@ -27,14 +27,16 @@ for a in $ratios; do
     --set "Postprocess/column collapse/Initial width=$L0" \
     --set "Postprocess/column collapse/Initial height=$H0" \
     --set "Time stepping/End time=$end_time" \
+    --set "Output/Write particles=false" \
     --set "Output/Directory=$out/$name" > "$out/$name.log"
   report="$out/$name/report.txt"
   value() { grep "^$1" "$report" | sed -E 's/.*: *//; s/ .*//'; }
   stop=$(grep -E "^mean speed below" "$report" | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
   done_line=$(grep '^Done:' "$out/$name.log")
-  printf "%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout')" "$(value 'final height H_inf/L0')" \
+  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout')" "$(value 'final height H_inf/L0')" \
     "${stop:-not stopped}" "$(value 'mean speed at the end')" "$(value 'Lube et al. 2005')" \
     "$(echo "$done_line" | awk '{print $4}')" \
-    "$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')" | tee -a "$csv"
+    "$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')" \
+    "$(value 'runout of the deposit')" "$(value 'total point volume')" | tee -a "$csv"
 done
 /usr/bin/python3 "$MPM_ROOT/scripts/plot_column_collapse.py" "$csv" "$MPM_ROOT/doc/column_collapse.png"
