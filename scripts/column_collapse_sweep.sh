@@ -33,7 +33,7 @@ for a in $ratios; do
   value() { grep "^$1" "$report" | sed -E 's/.*: *//; s/ .*//'; }
   stop=$(grep -E "^mean speed below" "$report" | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
   done_line=$(grep '^Done:' "$out/$name.log")
-  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout')" "$(value 'final height H_inf/L0')" \
+  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout (')" "$(value 'final height H_inf/L0')" \
     "${stop:-not stopped}" "$(value 'mean speed at the end')" "$(value 'Lube et al. 2005')" \
     "$(echo "$done_line" | awk '{print $4}')" \
     "$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')" \
