@@ -775,7 +775,10 @@ namespace MPM
             round_trip_velocity.local_element(i) =
               m > 0 ? round_trip_momentum.local_element(i) / m : 0.;
           }
-        boundary_conditions.project_velocity(round_trip_velocity);
+        // The same projection as u_1's (compute_nodal_velocity()).
+        boundary_conditions.project_velocity(
+          round_trip_velocity,
+          BoundaryConditions<dim>::Contact::as_last_update);
         for (const unsigned int i : active_dofs)
           filtered_velocity.local_element(i) +=
             coefficients[k] * round_trip_velocity.local_element(i);
