@@ -39,6 +39,41 @@ namespace MPM
         }
       return inside;
     }
+
+
+    /**
+     * Run @p parse_and_evaluate, which parses a function of the parameter
+     * file and evaluates it once: whatever the parser throws becomes an
+     * InputError that begins with @p what (the parameter and its text),
+     * not a parser error deep in the run (some malformed constants throw
+     * an exception that is not a std::exception, found by the fuzzer).
+     */
+    template <typename Callable>
+    void
+    parse_function_or_throw(const std::string &what,
+                            const Callable    &parse_and_evaluate)
+    {
+      try
+        {
+          parse_and_evaluate();
+        }
+      catch (const ExceptionBase &e)
+        {
+          // deal.II's own text, without its source location and stack
+          // trace.
+          std::ostringstream info;
+          e.print_info(info);
+          throw InputError(what + " cannot be evaluated:\n" + info.str());
+        }
+      catch (const std::exception &e)
+        {
+          throw InputError(what + " cannot be evaluated: " + e.what());
+        }
+      catch (...)
+        {
+          throw InputError(what + " cannot be parsed.");
+        }
+    }
   } // namespace
 
 
@@ -261,29 +296,13 @@ namespace MPM
             // The height above the ground takes the place of the parser's
             // time variable (the last one).
             r.inside = std::make_shared<FunctionParser<dim>>(1);
-            try
-              {
-                r.inside->initialize(dim == 2 ? "x,y,h" : "x,y,z,h",
-                                     expression,
-                                     constants,
-                                     true);
-                r.inside->value(Point<dim>());
-              }
-            catch (const ExceptionBase &e)
-              {
-                std::ostringstream info;
-                e.print_info(info);
-                throw InputError(where + " cannot be evaluated:\n" +
-                                 info.str());
-              }
-            catch (const std::exception &e)
-              {
-                throw InputError(where + " cannot be evaluated: " + e.what());
-              }
-            catch (...)
-              {
-                throw InputError(where + " cannot be parsed.");
-              }
+            parse_function_or_throw(where, [&]() {
+              r.inside->initialize(dim == 2 ? "x,y,h" : "x,y,z,h",
+                                   expression,
+                                   constants,
+                                   true);
+              r.inside->value(Point<dim>());
+            });
           }
         else
           {
@@ -317,41 +336,21 @@ namespace MPM
           }
         // A function is parsed, and evaluated once at the origin, here: a
         // typo in an expression or a constant is an input error naming the
-        // parameter, not a parser error deep in the run (or, for some
-        // malformed constants, an exception that is not a std::exception,
-        // found by the fuzzer).
+        // parameter.
         const auto parse_function =
           [&](const std::string &subsection, const unsigned int n_components) {
             prm.enter_subsection(subsection);
             auto f = std::make_shared<Functions::ParsedFunction<dim>>(
               n_components);
-            const std::string where = path + subsection + "/Function expression = '" +
-                                      prm.get("Function expression") + "'";
-            try
-              {
+            parse_function_or_throw(
+              path + subsection + "/Function expression = '" +
+                prm.get("Function expression") +
+                "' (with its 'Function constants')",
+              [&]() {
                 f->parse_parameters(prm);
                 Vector<double> values(n_components);
                 f->vector_value(Point<dim>(), values);
-              }
-            catch (const ExceptionBase &e)
-              {
-                // deal.II's own text, without its source location and
-                // stack trace.
-                std::ostringstream info;
-                e.print_info(info);
-                throw InputError(where + " (with its 'Function constants') "
-                                 "cannot be evaluated:\n" + info.str());
-              }
-            catch (const std::exception &e)
-              {
-                throw InputError(where + " (with its 'Function constants') "
-                                 "cannot be evaluated: " + e.what());
-              }
-            catch (...)
-              {
-                throw InputError(where + " (with its 'Function constants') "
-                                 "cannot be parsed.");
-              }
+              });
             prm.leave_subsection();
             return f;
           };

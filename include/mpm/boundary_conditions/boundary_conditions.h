@@ -227,6 +227,14 @@ namespace MPM
      * never reverses the motion. The normal component is left for the
      * projection. Exposed for unit tests.
      */
+    static Tensor<1, dim>
+    frictional_acceleration(const Tensor<1, dim> &v,
+                            const Tensor<1, dim> &a,
+                            const Tensor<1, dim> &n,
+                            const double          mu,
+                            const double          dt,
+                            bool *const           sticks = nullptr);
+
     /**
      * Friction at an edge node: the trial velocity w = v + dt a is
      * brought onto the edge by wall impulses lambda_j n_j (the Gram system
@@ -243,14 +251,6 @@ namespace MPM
                                  const std::array<double, 2>         &mu,
                                  const double                         dt,
                                  bool *const sticks = nullptr);
-
-    static Tensor<1, dim>
-    frictional_acceleration(const Tensor<1, dim> &v,
-                            const Tensor<1, dim> &a,
-                            const Tensor<1, dim> &n,
-                            const double          mu,
-                            const double          dt,
-                            bool *const           sticks = nullptr);
 
     const AffineConstraints<double> &
     constraints() const
