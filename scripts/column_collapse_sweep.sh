@@ -3,17 +3,25 @@
 # a = H0/L0 = 0.5 ... 6 (Release build): the runout (L_inf - L0)/L0 and the
 # final height against a, in doc/column_collapse.csv, and the plot
 # doc/column_collapse.png with the scaling laws (doc/column_collapse.md).
-# Usage: scripts/column_collapse_sweep.sh [aspect ratios, default "0.5 1 2 3 4 6"]
+# Usage: scripts/column_collapse_sweep.sh [aspect ratios, default "0.5 1 2 3 4 6"] [extra mpm arguments...]
+# Environment: MPM_CELL_SIZE (m, default 0.005), MPM_SWEEP_NAME (default:
+# the shipped sweep, written to doc/column_collapse.csv; another name writes
+# doc/column_collapse_NAME.csv), e.g. the APIC + CPDI sweep of
+# doc/transfers.md:
+#   MPM_SWEEP_NAME=apic_cpdi scripts/column_collapse_sweep.sh "0.5 1 2 3 4 6" \
+#     --set "Transfer/Scheme=apic" --set "Transfer/Particle-grid weights=cpdi"
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
 ratios="${1:-0.5 1 2 3 4 6}"
-out="output-column-collapse-sweep"
+shift || true
+name_suffix="${MPM_SWEEP_NAME:+_$MPM_SWEEP_NAME}"
+out="output-column-collapse-sweep$name_suffix"
 mkdir -p "$out"
-csv="$MPM_ROOT/doc/column_collapse.csv"
+csv="$MPM_ROOT/doc/column_collapse$name_suffix.csv"
 echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start" > "$csv"
 L0=0.1
-h=0.005
+h="${MPM_CELL_SIZE:-0.005}"
 for a in $ratios; do
   # Column L0 x H0 against the wall at x = 0; the mesh reaches past the
   # runout and above the column (5 mm cells); long enough to come to rest.
@@ -28,7 +36,7 @@ for a in $ratios; do
     --set "Postprocess/column collapse/Initial height=$H0" \
     --set "Time stepping/End time=$end_time" \
     --set "Output/Write particles=false" \
-    --set "Output/Directory=$out/$name" > "$out/$name.log"
+    --set "Output/Directory=$out/$name" "$@" > "$out/$name.log"
   report="$out/$name/report.txt"
   value() { grep "^$1" "$report" | sed -E 's/.*: *//; s/ .*//'; }
   stop=$(grep -E "^mean speed below" "$report" | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
@@ -39,4 +47,4 @@ for a in $ratios; do
     "$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')" \
     "$(value 'runout of the deposit')" "$(value 'total point volume')" | tee -a "$csv"
 done
-/usr/bin/python3 "$MPM_ROOT/scripts/plot_column_collapse.py" "$csv" "$MPM_ROOT/doc/column_collapse.png"
+/usr/bin/python3 "$MPM_ROOT/scripts/plot_column_collapse.py" "$csv" "$MPM_ROOT/doc/column_collapse$name_suffix.png"

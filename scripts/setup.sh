@@ -25,8 +25,14 @@ mpm_install_packages() {
 }
 
 # mpm_setup BUILD_TYPE: configure (once) and build build/<build_type lowercase>.
+# With MPM_BUILD_DIR set, that build is used as it is (nothing is built: a
+# long sweep keeps its executable while the sources change).
 mpm_setup() {
   local type="$1"
+  if [ -n "${MPM_BUILD_DIR:-}" ]; then
+    [ -x "$MPM_BUILD_DIR/mpm" ] || { echo "MPM_BUILD_DIR=$MPM_BUILD_DIR holds no mpm executable" >&2; exit 1; }
+    return 0
+  fi
   local dir="$MPM_ROOT/build/${type,,}"
   mpm_install_packages
   if [ ! -f "$dir/CMakeCache.txt" ]; then

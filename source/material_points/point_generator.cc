@@ -499,7 +499,8 @@ namespace MPM
     const BackgroundGrid<dim>       &grid,
     const MaterialLibrary           &materials,
     const Tensor<1, dim>            &gravity,
-    Particles::ParticleHandler<dim> &particle_handler) const
+    Particles::ParticleHandler<dim> &particle_handler,
+    const unsigned int               velocity_gradient_slot) const
   {
     using Layout              = PropertyLayout<dim>;
     const MPI_Comm comm       = grid.triangulation.get_communicator();
@@ -550,6 +551,18 @@ namespace MPM
             velocity = grid.to_mesh_frame(velocity);
             for (unsigned int d = 0; d < dim; ++d)
               properties[Layout::velocity + d] = velocity[d];
+            if (velocity_gradient_slot != numbers::invalid_unsigned_int)
+              {
+                // The parsed function's gradient is a difference quotient
+                // (AutoDerivativeFunction): exact for linear fields.
+                Tensor<2, dim> G;
+                for (unsigned int d = 0; d < dim; ++d)
+                  G[d] = region.initial_velocity->gradient(X, d);
+                G = grid.to_mesh_frame(G);
+                for (unsigned int a = 0; a < dim; ++a)
+                  for (unsigned int b = 0; b < dim; ++b)
+                    properties[velocity_gradient_slot + a * dim + b] = G[a][b];
+              }
 
             SymmetricTensor<2, 3> stress;
             if (region.initial_stress == "geostatic")

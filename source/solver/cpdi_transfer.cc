@@ -315,8 +315,17 @@ namespace MPM
                   << "out; reduce the time step.";
                 throw std::runtime_error(s.str());
               }
+            // The affine centre (see corner_offset).
+            Tensor<1, dim> shift;
             for (unsigned int c = 0; c < n_corners; ++c)
-              corners.push_back({corner_cell[c], p, xi[c], alpha[c], beta[c]});
+              shift += alpha[c] * (x[c] - x_p);
+            for (unsigned int c = 0; c < n_corners; ++c)
+              corners.push_back({corner_cell[c],
+                                 p,
+                                 xi[c],
+                                 alpha[c],
+                                 beta[c],
+                                 (x[c] - x_p) - shift});
           }
         it = points.end();
       }
@@ -349,6 +358,9 @@ namespace MPM
     corner_point.resize(corners.size());
     corner_alpha.resize(corners.size());
     corner_beta.resize(corners.size());
+    const bool affine = transfer.scheme() == TransferScheme::apic;
+    if (affine)
+      corner_offset.resize(corners.size());
     for (const auto &corner : corners)
       {
         const unsigned int k =
@@ -361,6 +373,8 @@ namespace MPM
         corner_point[k] = corner.point;
         corner_alpha[k] = corner.alpha;
         corner_beta[k]  = corner.beta;
+        if (affine)
+          corner_offset[k] = corner.offset;
       }
     for (const CellIterator &cell : touched)
       slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
@@ -400,7 +414,29 @@ namespace MPM
     using Layout                      = PropertyLayout<dim>;
     constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     const Tensor<1, dim>   g          = time_stepping.gravity;
+    const bool affine = transfer.scheme() == TransferScheme::apic;
     unsigned int           k          = 0;
+    if (affine)
+      {
+        // APIC: each point's affine matrix at its weights of this step,
+        // which needs its second moment D_p summed over its corners first
+        // (VelocityTransfer::affine_matrix()).
+        const unsigned int n_points = point_properties.size();
+        point_sum_D.assign(n_points, Tensor<2, dim>());
+        for (const auto &cell : active_cells)
+          for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            point_sum_D[corner_point[k]] +=
+              corner_alpha[k] *
+              VelocityTransfer<dim>::second_moment(shape_functions[k].value,
+                                                   corner_node_offsets(cell,
+                                                                       k));
+        point_affine.resize(n_points);
+        for (unsigned int p = 0; p < n_points; ++p)
+          point_affine[p] = transfer.affine_matrix(point_properties[p] +
+                                                     transfer_slot,
+                                                   point_sum_D[p]);
+        k = 0;
+      }
     for (const auto &cell : active_cells)
       {
         std::array<Tensor<1, dim>, n_vertices> mass, momentum, forces;
@@ -410,15 +446,33 @@ namespace MPM
             const double  m     = corner_alpha[k] * props[Layout::mass];
             const auto    v     = read_vector<dim>(&props[Layout::velocity]);
             const auto   &N     = shape_functions[k].value;
-            for (unsigned int i = 0; i < n_vertices; ++i)
+            if (affine)
               {
-                const double mi = N[i] * m;
-                for (unsigned int c = 0; c < dim; ++c)
+                // Each node receives the point's affine field there,
+                // v_p + C_p (x_i - xbar_p).
+                const auto dx = corner_node_offsets(cell, k);
+                const Tensor<2, dim> &C = point_affine[corner_point[k]];
+                for (unsigned int i = 0; i < n_vertices; ++i)
                   {
-                    mass[i][c] += mi;
-                    momentum[i][c] += mi * v[c];
+                    const double mi = N[i] * m;
+                    const auto   vi = v + C * dx[i];
+                    for (unsigned int c = 0; c < dim; ++c)
+                      {
+                        mass[i][c] += mi;
+                        momentum[i][c] += mi * vi[c];
+                      }
                   }
               }
+            else
+              for (unsigned int i = 0; i < n_vertices; ++i)
+                {
+                  const double mi = N[i] * m;
+                  for (unsigned int c = 0; c < dim; ++c)
+                    {
+                      mass[i][c] += mi;
+                      momentum[i][c] += mi * v[c];
+                    }
+                }
             if (with_forces)
               {
                 // f_i = -V sigma grad w_i + w_i m g, corner by corner.
@@ -480,6 +534,16 @@ namespace MPM
     //    its corners.
     point_sum_a.assign(n_points, Tensor<1, dim>());
     point_sum_b.assign(n_points, Tensor<1, dim>());
+    // APIC: B_p, D_p and the velocity gradient of the end-of-step grid
+    // velocity, for C_p = B_p D_p^{-1} (VelocityTransfer::fit_affine()).
+    const bool affine = transfer.scheme() == TransferScheme::apic;
+    if (affine)
+      {
+        point_sum_B.assign(n_points, Tensor<2, dim>());
+        point_sum_D.assign(n_points, Tensor<2, dim>());
+        point_sum_gradient.assign(n_points, Tensor<2, dim>());
+        point_node_scale.assign(n_points, 0.);
+      }
     unsigned int k = 0;
     for (const auto &cell : active_cells)
       {
@@ -502,6 +566,20 @@ namespace MPM
             const unsigned int p = corner_point[k];
             point_sum_a[p] += corner_alpha[k] * a;
             point_sum_b[p] += corner_alpha[k] * v;
+            if (affine)
+              {
+                const auto   dx    = corner_node_offsets(cell, k);
+                const double alpha = corner_alpha[k];
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  {
+                    const Tensor<1, dim> w_dx = (alpha * N[i]) * dx[i];
+                    point_sum_B[p] += outer_product(v_node[i], w_dx);
+                    point_sum_D[p] += outer_product(w_dx, dx[i]);
+                    point_node_scale[p] =
+                      std::max(point_node_scale[p], dx[i].norm_square());
+                  }
+                point_sum_gradient[p] += outer_product(v, corner_beta[k]);
+              }
           }
       }
     // 2. The points, in the order of point_properties.
@@ -509,12 +587,22 @@ namespace MPM
     unsigned int p      = 0;
     for (auto point = particle_handler.begin(); point != particle_handler.end();
          ++point, ++p)
-      advance_point(point,
-                    point_properties[p],
-                    point_sum_a[p],
-                    point_sum_b[p],
-                    point_cell_map[p],
-                    v_max2);
+      {
+        advance_point(point,
+                      point_properties[p],
+                      point_sum_a[p],
+                      point_sum_b[p],
+                      point_cell_map[p],
+                      v_max2);
+        if (affine)
+          point_affine[p] =
+            VelocityTransfer<dim>::fit_affine(point_sum_B[p],
+                                              point_sum_D[p],
+                                              point_sum_gradient[p],
+                                              point_node_scale[p],
+                                              point_properties[p] +
+                                                transfer_slot);
+      }
     // 3. MUSL: the points' new momentum back to the nodes.
     if (remap_momentum)
       {
@@ -526,12 +614,21 @@ namespace MPM
             for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
               {
                 const double *props = point_properties[corner_point[k]];
-                const Tensor<1, dim> mv =
-                  (corner_alpha[k] * props[Layout::mass]) *
+                const double  m = corner_alpha[k] * props[Layout::mass];
+                const Tensor<1, dim> v =
                   read_vector<dim>(&props[Layout::velocity]);
                 const auto &N = shape_functions[k].value;
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  remapped[i] += N[i] * mv;
+                if (affine)
+                  {
+                    // APIC's particle-to-grid with the new C_p.
+                    const auto            dx = corner_node_offsets(cell, k);
+                    const Tensor<2, dim> &C  = point_affine[corner_point[k]];
+                    for (unsigned int i = 0; i < n_vertices; ++i)
+                      remapped[i] += (N[i] * m) * (v + C * dx[i]);
+                  }
+                else
+                  for (unsigned int i = 0; i < n_vertices; ++i)
+                    remapped[i] += (N[i] * m) * v;
               }
             add_to_nodes(cell, remapped, nodal_momentum);
           }
@@ -587,12 +684,74 @@ namespace MPM
   }
 
 
+  template <int dim>
+  void
+  Simulator<dim>::round_trip_cpdi()
+  {
+    using Layout                      = PropertyLayout<dim>;
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    // S+: each point's velocity, summed over its corners.
+    point_sum_b.assign(point_properties.size(), Tensor<1, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> u_node;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            u_node[i][c] = round_trip_velocity.local_element(cell.dofs[i][c]);
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const auto    &N = shape_functions[k].value;
+            Tensor<1, dim> v;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              v += N[i] * u_node[i];
+            point_sum_b[corner_point[k]] += corner_alpha[k] * v;
+          }
+      }
+    // S: the points' momentum back to the nodes with the same weights.
+    zero_touched_entries(round_trip_momentum);
+    k = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> sums;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const unsigned int   p = corner_point[k];
+            const Tensor<1, dim> mv =
+              (corner_alpha[k] * point_properties[p][Layout::mass]) *
+              point_sum_b[p];
+            const auto &N = shape_functions[k].value;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              sums[i] += N[i] * mv;
+          }
+        add_to_nodes(cell, sums, round_trip_momentum);
+      }
+    add_contributions_of_all_ranks(round_trip_momentum);
+  }
+
+
+  template <int dim>
+  std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+  Simulator<dim>::corner_node_offsets(const ActiveCell  &cell,
+                                      const unsigned int k) const
+  {
+    // x_i - xbar_p = (x_i - x_c) + (x_c - xbar_p).
+    auto dx = vertex_offsets(cell, shape_functions[k]);
+    for (auto &d : dx)
+      d += corner_offset[k];
+    return dx;
+  }
+
+
 #define MPM_INSTANTIATE(dim)                                               \
   template void Simulator<dim>::prepare_cpdi_transfer();                   \
   template void Simulator<dim>::map_mass_and_momentum_cpdi(const bool);    \
   template void Simulator<dim>::map_forces_cpdi();                         \
   template void Simulator<dim>::update_points_from_grid_cpdi(const bool);  \
-  template void Simulator<dim>::update_stress_cpdi(const NodalVector &);
+  template void Simulator<dim>::update_stress_cpdi(const NodalVector &);   \
+  template void Simulator<dim>::round_trip_cpdi();                         \
+  template std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> \
+  Simulator<dim>::corner_node_offsets(const ActiveCell &, const unsigned int) const;
   MPM_INSTANTIATE(2)
   MPM_INSTANTIATE(3)
 #undef MPM_INSTANTIATE

@@ -124,18 +124,14 @@ namespace MPM
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
     point_domains.parse_parameters(prm);
-    check_input(!point_domains.enabled() ||
-                  transfer.scheme() == TransferScheme::flip_pic_blend,
-                "'Transfer/Particle-grid weights = cpdi' works with "
-                "'Transfer/Scheme = flip/pic blend' only so far (APIC and XPIC "
-                "with CPDI are not implemented); choose one of the two.");
     if (transfer.scheme() == TransferScheme::apic &&
-        time_stepping.scheme != UpdateScheme::musl)
+        time_stepping.scheme != UpdateScheme::musl && !point_domains.enabled())
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
                "scheme' USF or USL fits each point's affine matrix to the "
                "end-of-step grid velocity, which on bilinear cells was "
                "measured unstable above CFL 0.05 (doc/transfers.md); MUSL "
-               "takes it from the MUSL remap and is stable.\n";
+               "takes it from the MUSL remap and is stable, and so are CPDI "
+               "weights ('Transfer/Particle-grid weights = cpdi').\n";
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
     stability_monitor.parse_parameters(prm);
@@ -218,7 +214,10 @@ namespace MPM
       point_generator.generate(grid,
                                materials,
                                time_stepping.gravity,
-                               particle_handler);
+                               particle_handler,
+                               transfer.scheme() == TransferScheme::apic ?
+                                 transfer_slot :
+                                 numbers::invalid_unsigned_int);
     // Gravity is given in the scene's frame, like everything else.
     time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
     // p4est's first partition balances cells; the work is where the points
@@ -226,6 +225,9 @@ namespace MPM
     if (!checkpointing.resume() &&
         Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       repartition();
+
+    if (!checkpointing.resume() && transfer.scheme() == TransferScheme::apic)
+      initialize_affine_matrices();
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
@@ -270,6 +272,39 @@ namespace MPM
           << " centre of mass (m), " << 10 + 2 * dim
           << " removed points, " << 11 + 2 * dim
           << " removed mass (kg). Energies per unit thickness in 2D.\n";
+      }
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize_affine_matrices()
+  {
+    // The generator wrote the initial velocity gradient into C_p; what its
+    // affine part carries (VelocityTransfer::store_affine()) depends on the
+    // point's second moment under the weights of the first step.
+    prepare_transfer();
+    const unsigned int n_points = point_properties.size();
+    point_sum_D.assign(n_points, Tensor<2, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+        if (point_domains.enabled())
+          point_sum_D[corner_point[k]] +=
+            corner_alpha[k] *
+            VelocityTransfer<dim>::second_moment(shape_functions[k].value,
+                                                 corner_node_offsets(cell, k));
+        else
+          point_sum_D[k] = VelocityTransfer<dim>::second_moment(
+            shape_functions[k].value, vertex_offsets(cell, shape_functions[k]));
+    for (unsigned int p = 0; p < n_points; ++p)
+      {
+        double        *affine = point_properties[p] + transfer_slot;
+        Tensor<2, dim> C;
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            C[a][b] = affine[a * dim + b];
+        VelocityTransfer<dim>::store_affine(C, point_sum_D[p], affine);
       }
   }
 
@@ -710,32 +745,11 @@ namespace MPM
 
 
   template <int dim>
-  inline std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
-  Simulator<dim>::vertex_offsets(const ActiveCell            &cell,
-                                 const Q1ShapeFunctions<dim> &sf) const
-  {
-    // x_p = sum_j N_j x_j (the isoparametric map), so x_i - x_p needs no
-    // point location; relative to vertex 0 to avoid cancellation far from
-    // the origin.
-    const auto    &x = *cell.vertices;
-    Tensor<1, dim> xp;
-    for (unsigned int j = 1; j < x.size(); ++j)
-      xp += sf.value[j] * (x[j] - x[0]);
-    std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> dx;
-    for (unsigned int i = 0; i < x.size(); ++i)
-      dx[i] = (x[i] - x[0]) - xp;
-    return dx;
-  }
-
-
-  template <int dim>
   void
   Simulator<dim>::filter_brought_velocity()
   {
     TimerOutput::Scope t(timer, "transfer filter");
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
-    using Layout                      = PropertyLayout<dim>;
-    const auto &coefficients          = transfer.filter_coefficients();
+    const auto        &coefficients = transfer.filter_coefficients();
     // u_1 = the constrained brought velocity (compute_nodal_velocity()).
     for (const unsigned int i : active_dofs)
       {
@@ -747,28 +761,10 @@ namespace MPM
       {
         // u_{k+1} = P S S+ u_k: interpolate to the points, project back
         // with their masses, constrain.
-        zero_touched_entries(round_trip_momentum);
-        unsigned int p = 0;
-        for (const auto &cell : active_cells)
-          {
-            std::array<Tensor<1, dim>, n_vertices> u_node, sums;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              for (unsigned int c = 0; c < dim; ++c)
-                u_node[i][c] =
-                  round_trip_velocity.local_element(cell.dofs[i][c]);
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++p)
-              {
-                const auto    &N = shape_functions[p].value;
-                Tensor<1, dim> v;
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  v += N[i] * u_node[i];
-                v *= point_properties[p][Layout::mass];
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  sums[i] += N[i] * v;
-              }
-            add_to_nodes(cell, sums, round_trip_momentum);
-          }
-        add_contributions_of_all_ranks(round_trip_momentum);
+        if (point_domains.enabled())
+          round_trip_cpdi();
+        else
+          round_trip();
         for (const unsigned int i : active_dofs)
           {
             const double m = nodal_mass.local_element(i);
@@ -788,6 +784,37 @@ namespace MPM
     for (const unsigned int i : active_dofs)
       nodal_momentum.local_element(i) =
         nodal_mass.local_element(i) * filtered_velocity.local_element(i);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::round_trip()
+  {
+    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+    using Layout                      = PropertyLayout<dim>;
+    zero_touched_entries(round_trip_momentum);
+    unsigned int p = 0;
+    for (const auto &cell : active_cells)
+      {
+        std::array<Tensor<1, dim>, n_vertices> u_node, sums;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          for (unsigned int c = 0; c < dim; ++c)
+            u_node[i][c] =
+              round_trip_velocity.local_element(cell.dofs[i][c]);
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++p)
+          {
+            const auto    &N = shape_functions[p].value;
+            Tensor<1, dim> v;
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              v += N[i] * u_node[i];
+            v *= point_properties[p][Layout::mass];
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              sums[i] += N[i] * v;
+          }
+        add_to_nodes(cell, sums, round_trip_momentum);
+      }
+    add_contributions_of_all_ranks(round_trip_momentum);
   }
 
 
@@ -1148,10 +1175,11 @@ namespace MPM
             // MUSL with APIC: the affine matrix is this velocity gradient
             // (see VelocityTransfer::store_affine()).
             if (set_affine)
-              VelocityTransfer<dim>::store_affine(sf,
-                                                  vertex_offsets(cell, sf),
-                                                  grad_v,
-                                                  props + transfer_slot);
+              VelocityTransfer<dim>::store_affine(
+                grad_v,
+                VelocityTransfer<dim>::second_moment(sf.value,
+                                                     vertex_offsets(cell, sf)),
+                props + transfer_slot);
           }
       }
   }
@@ -1371,20 +1399,8 @@ namespace MPM
         // translation, whose spin is zero.
         scale += m * r.norm() * (v + mean_velocity).norm();
         if (affine)
-          {
-            const auto &x = grid.cell_vertices(point.get_surrounding_cell());
-            Q1ShapeFunctions<dim> sf;
-            sf.reinit(x, point.get_reference_location());
-            Tensor<2, dim> C;
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = 0; b < dim; ++b)
-                C[a][b] = props[transfer_slot + a * dim + b];
-            for (unsigned int i = 0; i < x.size(); ++i)
-              {
-                const Tensor<1, dim> dx = x[i] - point.get_location();
-                L += (m * sf.value[i]) * cross(dx, C * dx);
-              }
-          }
+          L += m * VelocityTransfer<dim>::affine_angular_momentum(
+                     &props[transfer_slot]);
       }
     return {Utilities::MPI::sum(L, mpi_communicator),
             Utilities::MPI::sum(scale, mpi_communicator)};

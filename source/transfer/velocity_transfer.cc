@@ -18,10 +18,13 @@ namespace MPM
         "(1 - theta) S+ v with theta = 'FLIP fraction' (0 = PIC: strongly "
         "dissipative; 1 = FLIP: noisy). 'apic': affine particle-in-cell "
         "(Jiang et al. 2015): points carry an affine velocity field that "
-        "particle-to-grid keeps exactly; with MUSL its matrix is the "
-        "velocity gradient of the MUSL remap (stable), with USF and USL "
-        "it is fitted to the end-of-step grid velocity (exact, but "
-        "unstable on bilinear cells above CFL 0.05). 'xpic': XPIC(m) "
+        "particle-to-grid keeps exactly. With 'Particle-grid weights = "
+        "cpdi' its matrix is fitted to the end-of-step grid velocity "
+        "(C = B D^-1) under every update scheme: stable at CFL 0.9 and "
+        "the least dissipative scheme here. With linear weights, under "
+        "MUSL it is the velocity gradient of the MUSL remap (stable, but "
+        "dissipative as PIC), under USF and USL the fit (unstable above "
+        "CFL 0.05: D vanishes on cell edges). 'xpic': XPIC(m) "
         "(Hammerquist and Nairn 2017), PIC from a grid velocity in which "
         "the round trip's smoothing is undone to order m.");
       prm.declare_entry("FLIP fraction",
@@ -84,7 +87,14 @@ namespace MPM
         for (unsigned int b = 0; b < dim; ++b)
           names.push_back(std::string("affine_") + "xyz"[a] + "xyz"[b]);
     if (transfer_scheme == TransferScheme::apic)
-      names.emplace_back("affine_energy");
+      {
+        names.emplace_back("affine_energy");
+        if (dim == 2)
+          names.emplace_back("affine_spin_z");
+        else
+          for (unsigned int a = 0; a < dim; ++a)
+            names.push_back(std::string("affine_spin_") + "xyz"[a]);
+      }
     return names;
   }
 

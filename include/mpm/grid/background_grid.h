@@ -144,6 +144,13 @@ namespace MPM
       return Point<dim>(rotation * x);
     }
 
+    /// A gradient (of a vector field) in the mesh's frame: R G R^T.
+    Tensor<2, dim>
+    to_mesh_frame(const Tensor<2, dim> &G) const
+    {
+      return rotation * G * transpose(rotation);
+    }
+
     /// R sigma R^T for a 3x3 stress (plane strain in 2D).
     SymmetricTensor<2, 3>
     to_mesh_frame(const SymmetricTensor<2, 3> &t) const;

@@ -65,13 +65,18 @@ namespace MPM
      * globally unique ids 0, 1, ... (ordered by rank, then region, then
      * cell). @p gravity (in the scene's frame, see
      * BackgroundGrid::to_mesh_frame()) is needed for the geostatic initial
-     * stress.
+     * stress. If @p velocity_gradient_slot is a property slot, the
+     * gradient of the initial velocity at each point is written there
+     * (dim x dim, row-major; APIC's affine matrix starts from it, so that
+     * a body set spinning keeps its sub-cell motion from the first step).
      */
     void
     generate(const BackgroundGrid<dim>      &grid,
              const MaterialLibrary          &materials,
              const Tensor<1, dim>           &gravity,
-             Particles::ParticleHandler<dim> &particle_handler) const;
+             Particles::ParticleHandler<dim> &particle_handler,
+             const unsigned int velocity_gradient_slot =
+               numbers::invalid_unsigned_int) const;
 
   private:
     struct Region

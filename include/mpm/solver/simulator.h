@@ -323,7 +323,20 @@ namespace MPM
      * functions are @p sf (APIC's affine transfer).
      */
     std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
-    vertex_offsets(const ActiveCell &cell, const Q1ShapeFunctions<dim> &sf) const;
+    vertex_offsets(const ActiveCell &cell, const Q1ShapeFunctions<dim> &sf) const
+    {
+      // x_p = sum_j N_j x_j (the isoparametric map), so x_i - x_p needs no
+      // point location; relative to vertex 0 to avoid cancellation far
+      // from the origin.
+      const auto    &x = *cell.vertices;
+      Tensor<1, dim> xp;
+      for (unsigned int j = 1; j < x.size(); ++j)
+        xp += sf.value[j] * (x[j] - x[0]);
+      std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> dx;
+      for (unsigned int i = 0; i < x.size(); ++i)
+        dx[i] = (x[i] - x[0]) - xp;
+      return dx;
+    }
 
     /**
      * XPIC(m): replace the brought nodal velocity (nodal_momentum / mass)
@@ -335,6 +348,20 @@ namespace MPM
      */
     void
     filter_brought_velocity();
+
+    /**
+     * APIC, at the start of a run: complete each point's affine slots
+     * (its C_p, the initial velocity gradient, written by the
+     * PointGenerator) with the energy and angular momentum of its affine
+     * part under the first step's weights.
+     */
+    void
+    initialize_affine_matrices();
+
+    /// XPIC's round trip S S+ of round_trip_velocity into
+    /// round_trip_momentum with linear weights (CPDI: round_trip_cpdi()).
+    void
+    round_trip();
 
     void
     map_forces();
@@ -421,6 +448,16 @@ namespace MPM
 
     void
     update_stress_cpdi(const NodalVector &velocity);
+
+    /// XPIC's round trip S S+ of round_trip_velocity into
+    /// round_trip_momentum through the corners.
+    void
+    round_trip_cpdi();
+
+    /// APIC: the offsets x_i - xbar_p of the nodes of @p cell from the
+    /// affine centre of the point of corner @p k.
+    std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+    corner_node_offsets(const ActiveCell &cell, const unsigned int k) const;
     /// @}
 
     void
@@ -500,6 +537,14 @@ namespace MPM
     std::vector<unsigned int>   corner_point;
     std::vector<double>         corner_alpha;
     std::vector<Tensor<1, dim>> corner_beta;
+    /**
+     * CPDI with APIC: each corner's offset x_c - xbar_p from its point's
+     * affine centre xbar_p = x_p + sum_c alpha_c (x_c - x_p), the mean of
+     * the weights' centres, about which sum_i w_ip (x_i - xbar_p) = 0 (so
+     * the affine part adds no momentum); xbar_p = x_p unless a corner was
+     * moved onto a cell.
+     */
+    std::vector<Tensor<1, dim>> corner_offset;
     /// CPDI: a corner located by prepare_cpdi_transfer(), before the
     /// corners are grouped by cell.
     struct LocatedCorner
@@ -509,6 +554,8 @@ namespace MPM
       Point<dim>                                        xi;
       double                                            alpha;
       Tensor<1, dim>                                    beta;
+      /// x_c - x_p minus the point's mean corner offset (APIC).
+      Tensor<1, dim>                                    offset;
     };
     std::vector<LocatedCorner> located_corners;
     /// CPDI: each active cell's slot among the cells holding corners
@@ -518,6 +565,12 @@ namespace MPM
     std::vector<const BilinearCellMap *> point_cell_map;
     std::vector<Tensor<1, dim>>          point_sum_a, point_sum_b;
     std::vector<Tensor<2, dim>>          point_sum_gradient;
+    /// CPDI with APIC: each point's B_p and D_p (VelocityTransfer), the
+    /// largest |x_i - x_p|^2 of its nodes, and the affine matrix it hands
+    /// to the grid this step.
+    std::vector<Tensor<2, dim>>          point_sum_B, point_sum_D,
+      point_affine;
+    std::vector<double>                  point_node_scale;
     /// CPDI: the first point (index into point_properties) of each cell
     /// holding points, and one past the last.
     std::vector<unsigned int>            point_cell_begin;

@@ -105,41 +105,62 @@ namespace MPM
 
     /**
      * Property slots this scheme keeps per point, after the material
-     * state (APIC: the dim x dim matrix C_p, row-major).
+     * state. APIC: the dim x dim matrix C_p (row-major), the energy per
+     * unit mass of its affine part, and that part's angular momentum per
+     * unit mass (1 component in 2D, 3 in 3D), both where C_p was computed.
      */
     unsigned int
     n_point_properties() const
     {
-      return transfer_scheme == TransferScheme::apic ? dim * dim + 1 : 0;
+      return transfer_scheme == TransferScheme::apic ?
+               dim * dim + 1 + n_spin_components :
+               0;
     }
 
     std::vector<std::string>
     point_property_names() const;
 
+    /// Components of an angular momentum: 1 in 2D (about z), 3 in 3D.
+    static constexpr unsigned int n_spin_components = dim == 2 ? 1 : 3;
+
     /**
-     * The affine matrix a point hands to the grid at its current position
-     * (shape functions @p sf, vertex offsets @p dx): its stored C_p, scaled
-     * down if the affine part would carry more kinetic energy here than
-     * where C_p was computed.
+     * A point's second moment D_p = sum_i w_i dx_i dx_i^T of its weights
+     * @p w about the nodes' offsets @p dx (dx_i = x_i - x_p).
+     */
+    static Tensor<2, dim>
+    second_moment(const std::array<double, n_vertices>         &w,
+                  const std::array<Tensor<1, dim>, n_vertices> &dx)
+    {
+      Tensor<2, dim> D;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        D += outer_product(w[i] * dx[i], dx[i]);
+      return D;
+    }
+
+    /**
+     * The affine matrix a point hands to the grid where its second moment
+     * is @p D: its stored C_p (slots @p affine), scaled down if the
+     * affine part would carry more kinetic energy here than where C_p was
+     * computed.
      *
      * Why: APIC's round trip never creates energy when the point's second
-     * moment D_p = sum_i N_i dx_i dx_i^T is the same at the grid-to-
-     * particle transfer (end of a step) and at the next particle-to-grid
-     * one: the affine part's energy m_p tr(C_p D_p C_p^T)/2 is then what
-     * the grid loses and gets back. With quadratic B-splines D_p is a
-     * constant; with bilinear functions it goes from h^2/4 at a cell's
-     * centre to 0 on its edges, so a point that moves away from an edge
-     * multiplies its affine energy by D_new/D_old, without bound. Measured
-     * (doc/transfers.md): without this limit a freely spinning elastic
-     * body blows up within 0.3 s at CFL 0.1 and within 70 steps at CFL 0.5.
-     * The limit keeps m_p tr(C D_new C^T) <= m_p tr(C D_old C^T) (the
-     * energy stored in the last slot): exact wherever the point moves
-     * towards the inside of its cell or stays, a small loss elsewhere.
+     * moment D_p is the same at the grid-to-particle transfer (end of a
+     * step) and at the next particle-to-grid one: the affine part's energy
+     * m_p tr(C_p D_p C_p^T)/2 is then what the grid loses and gets back.
+     * With quadratic B-splines D_p is a constant; with bilinear functions
+     * it goes from h^2/4 at a cell's centre to 0 on its edges, so a point
+     * that moves away from an edge multiplies its affine energy by
+     * D_new/D_old, without bound. Measured (doc/transfers.md): without
+     * this limit a freely spinning elastic body blows up within 0.3 s at
+     * CFL 0.1 and within 70 steps at CFL 0.5. The limit keeps
+     * m_p tr(C D_new C^T) <= m_p tr(C D_old C^T) (the energy stored in the
+     * slot after C): exact wherever the point moves towards the inside of
+     * its cell or stays, a small loss elsewhere. With CPDI weights D_p is
+     * bounded below by the second moment of the point's domain, so the
+     * ratio is bounded, but the limit still acts.
      */
     Tensor<2, dim>
-    affine_matrix(const Q1ShapeFunctions<dim>                 &sf,
-                  const std::array<Tensor<1, dim>, n_vertices> &dx,
-                  const double                                 *affine) const
+    affine_matrix(const double *affine, const Tensor<2, dim> &D) const
     {
       Tensor<2, dim> C;
       for (unsigned int a = 0; a < dim; ++a)
@@ -147,65 +168,115 @@ namespace MPM
           C[a][b] = affine[a * dim + b];
       if (!limit_affine_energy)
         return C;
-      const double energy = affine_energy(sf, dx, C);
+      const double energy = scalar_product(C * D, C);
       const double stored = affine[dim * dim];
       if (energy > stored)
         C *= std::sqrt(stored / energy);
       return C;
     }
 
+    /// affine_matrix() at a point of a cell with linear weights (shape
+    /// functions @p sf, vertex offsets @p dx).
+    Tensor<2, dim>
+    affine_matrix(const Q1ShapeFunctions<dim>                 &sf,
+                  const std::array<Tensor<1, dim>, n_vertices> &dx,
+                  const double                                 *affine) const
+    {
+      if (!limit_affine_energy)
+        return affine_matrix(affine, Tensor<2, dim>());
+      return affine_matrix(affine, second_moment(sf.value, dx));
+    }
+
     /**
      * APIC's new affine matrix of a point from the end-of-step grid
-     * velocity @p v_node at its cell's vertices: C_p = B_p D_p^{-1} with
-     * B_p = sum_i N_i v_i dx_i^T and D_p = sum_i N_i dx_i dx_i^T
-     * (dx_i = x_i - x_p). Exact for every affine grid field on any
-     * isoparametric cell (the Q1 functions reproduce linear fields), and
-     * the B D^{-1} form is what makes the round trip conserve angular
+     * velocity: C_p = B_p D_p^{-1} with B_p = sum_i w_i v_i dx_i^T and
+     * D_p = sum_i w_i dx_i dx_i^T (@p B and @p D, summed by the caller
+     * over the point's weights w_i, dx_i = x_i - x_p). Exact for every
+     * affine grid field (linear and CPDI weights reproduce linear fields),
+     * and the B D^{-1} form is what makes the round trip conserve angular
      * momentum: the points' angular momentum x_p x m_p v_p plus that of the
-     * affine part, m_p skew(C_p D_p), equals the grid's sum_i x_i x m_i v_i.
-     * D_p is singular where the point sits on a vertex or an edge; there
-     * (det D_p below 1e-10 of its scale) the limit, the velocity gradient
-     * sum_i v_i (x) grad N_i, is taken. Stores C_p and the energy per
-     * unit mass of the affine part at this position, sum_i N_i |C dx_i|^2
-     * (= tr(C D C^T)), for affine_matrix(); returns C_p.
+     * affine part, m_p skew(C_p D_p), equals the grid's
+     * sum_i x_i x m_i v_i. D_p is singular where a point with linear
+     * weights sits on a vertex or an edge; there (det D_p below 1e-10 of
+     * @p scale^dim, the largest |dx_i|^2) the limit, the velocity gradient
+     * @p gradient, is taken. Stores C_p with store_affine(); returns it.
      */
+    static Tensor<2, dim>
+    fit_affine(const Tensor<2, dim> &B,
+               const Tensor<2, dim> &D,
+               const Tensor<2, dim> &gradient,
+               const double          scale,
+               double               *affine)
+    {
+      const Tensor<2, dim> C = determinant(D) > 1e-10 * std::pow(scale, dim) ?
+                                 B * invert(D) :
+                                 gradient;
+      store_affine(C, D, affine);
+      return C;
+    }
+
+    /// fit_affine() for a point with linear weights in a cell: shape
+    /// functions @p sf, vertex offsets @p dx, velocities @p v_node.
     static Tensor<2, dim>
     update_affine(const Q1ShapeFunctions<dim>                 &sf,
                   const std::array<Tensor<1, dim>, n_vertices> &dx,
                   const std::array<Tensor<1, dim>, n_vertices> &v_node,
-                  double                                       *affine);
+                  double                                       *affine)
+    {
+      Tensor<2, dim> B, gradient;
+      double         scale = 0;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        {
+          B += outer_product(v_node[i], sf.value[i] * dx[i]);
+          gradient += outer_product(v_node[i], sf.gradient[i]);
+          scale = std::max(scale, dx[i].norm_square());
+        }
+      return fit_affine(
+        B, second_moment(sf.value, dx), gradient, scale, affine);
+    }
 
     /**
      * Store the affine matrix @p C in the point's slots @p affine, with
-     * the energy per unit mass of its affine part at this position,
-     * sum_i N_i |C dx_i|^2 = tr(C D_p C^T), for affine_matrix().
+     * what its affine part carries where the point's second moment is
+     * @p D: the energy per unit mass tr(C D C^T) (for affine_matrix())
+     * and the angular momentum per unit mass, sum_i w_i dx_i x C dx_i, the
+     * antisymmetric part of C D (for the conservation report).
      */
     static void
-    store_affine(const Q1ShapeFunctions<dim>                 &sf,
-                 const std::array<Tensor<1, dim>, n_vertices> &dx,
-                 const Tensor<2, dim>                         &C,
-                 double                                       *affine)
+    store_affine(const Tensor<2, dim> &C,
+                 const Tensor<2, dim> &D,
+                 double               *affine)
     {
       for (unsigned int a = 0; a < dim; ++a)
         for (unsigned int b = 0; b < dim; ++b)
           affine[a * dim + b] = C[a][b];
-      affine[dim * dim] = affine_energy(sf, dx, C);
+      const Tensor<2, dim> CD = C * D;
+      affine[dim * dim]       = trace(CD * transpose(C));
+      if constexpr (dim == 2)
+        affine[dim * dim + 1] = CD[1][0] - CD[0][1];
+      else
+        for (unsigned int a = 0; a < 3; ++a)
+          {
+            const unsigned int b = (a + 1) % 3, c = (a + 2) % 3;
+            affine[dim * dim + 1 + a] = CD[c][b] - CD[b][c];
+          }
+    }
+
+    /// The affine part's angular momentum per unit mass stored by
+    /// store_affine() (z only in 2D).
+    static Tensor<1, 3>
+    affine_angular_momentum(const double *affine)
+    {
+      Tensor<1, 3> L;
+      if constexpr (dim == 2)
+        L[2] = affine[dim * dim + 1];
+      else
+        for (unsigned int a = 0; a < 3; ++a)
+          L[a] = affine[dim * dim + 1 + a];
+      return L;
     }
 
   private:
-    /// Twice the kinetic energy per unit mass of the affine field C at a
-    /// point: sum_i N_i |C dx_i|^2 = tr(C D_p C^T).
-    static double
-    affine_energy(const Q1ShapeFunctions<dim>                 &sf,
-                  const std::array<Tensor<1, dim>, n_vertices> &dx,
-                  const Tensor<2, dim>                         &C)
-    {
-      double energy = 0;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        energy += sf.value[i] * (C * dx[i]).norm_square();
-      return energy;
-    }
-
     TransferScheme transfer_scheme = TransferScheme::flip_pic_blend;
     double         flip            = 0;
     unsigned int   order           = 2;
@@ -215,32 +286,6 @@ namespace MPM
   };
 
 
-  template <int dim>
-  inline Tensor<2, dim>
-  VelocityTransfer<dim>::update_affine(
-    const Q1ShapeFunctions<dim>                 &sf,
-    const std::array<Tensor<1, dim>, n_vertices> &dx,
-    const std::array<Tensor<1, dim>, n_vertices> &v_node,
-    double                                       *affine)
-  {
-    Tensor<2, dim> B, D;
-    double         scale = 0;
-    for (unsigned int i = 0; i < n_vertices; ++i)
-      {
-        const Tensor<1, dim> w_dx = sf.value[i] * dx[i];
-        B += outer_product(v_node[i], w_dx);
-        D += outer_product(w_dx, dx[i]);
-        scale = std::max(scale, dx[i].norm_square());
-      }
-    Tensor<2, dim> C;
-    if (determinant(D) > 1e-10 * std::pow(scale, dim))
-      C = B * invert(D);
-    else
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        C += outer_product(v_node[i], sf.gradient[i]);
-    store_affine(sf, dx, C, affine);
-    return C;
-  }
 } // namespace MPM
 
 #endif
