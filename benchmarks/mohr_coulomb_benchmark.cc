@@ -111,7 +111,7 @@ main(int argc, char **argv)
       for (unsigned int k = 0; k < 300; ++k)
         model.update_stress(path.increment(generator),
                             input.stress,
-                            ArrayView<double>(&input.plastic_strain, 1));
+                            ArrayView<double>(&input.plastic_strain, 1), 1.);
       input.strain_increment = path.increment(generator);
     }
 
@@ -140,7 +140,7 @@ main(int argc, char **argv)
           double                plastic_strain = input.plastic_strain;
           model.update_stress(input.strain_increment,
                               stress,
-                              ArrayView<double>(&plastic_strain, 1));
+                              ArrayView<double>(&plastic_strain, 1), 1.);
           checksum += stress[1][1] + plastic_strain;
         }
       best = std::min(best,

@@ -18,18 +18,32 @@ mkdir -p "$out"
 # doc/flume_references.md.
 small="-0.320685063, 0.195746999 ; -0.294607, 0.238470 ; -0.390676, 0.238470"
 titan="-0.320685063, 0.195746999 ; -0.298756, 0.231680 ; -0.379555, 0.231680"
+mui=("--set" "Materials/sand/Model=mu(I)" "--set" "Materials/sand/mu(I)/Young's modulus=2e6"
+     "--set" "Materials/sand/mu(I)/Poisson's ratio=0.3" "--set" "Materials/sand/mu(I)/Grain diameter=0.0005"
+     "--set" "Materials/sand/mu(I)/Grain density=2650")
+mui_joined=$(IFS='|'; echo "${mui[*]}")
 variants=(
   "shipped"
   "mu0.45|--set|Boundary conditions/bed/Friction coefficient=0.45"
   "mu0.48|--set|Boundary conditions/bed/Friction coefficient=0.48"
   "mu0.56|--set|Boundary conditions/bed/Friction coefficient=0.56"
   "phi35|--set|Materials/sand/mohr coulomb/Friction angle=35"
+  "phi33|--set|Materials/sand/mohr coulomb/Friction angle=33"
+  "phi30|--set|Materials/sand/mohr coulomb/Friction angle=30"
+  "phi25|--set|Materials/sand/mohr coulomb/Friction angle=25"
   "ppc4|--set|Material points/sand/Points per cell=4"
   "volume20.5|--set|Material points/sand/Polygon=$small"
   "volume14.5|--set|Material points/sand/Polygon=$titan"
   "cfl0.25|--set|Time stepping/CFL number=0.25"
   "usf|--set|Time stepping/Update scheme=USF"
   "pic|--set|Transfer/FLIP fraction=0"
+  # mu(I) (doc/materials.md): tau/p <= mu_s = sin(40 deg) = tan(32.74 deg)
+  # is Mohr-Coulomb's strength at 40 degrees in plane strain without
+  # dilation; without rate effect (phi_2 = phi_s), with Jop et al.'s
+  # mu_2 - mu_s = 0.26 (phi_2 = 42.1), and with Jop et al.'s glass beads.
+  "dp40|$mui_joined|--set|Materials/sand/mu(I)/Static friction angle=32.74|--set|Materials/sand/mu(I)/Dynamic friction angle=32.74"
+  "mui40|$mui_joined|--set|Materials/sand/mu(I)/Static friction angle=32.74|--set|Materials/sand/mu(I)/Dynamic friction angle=42.1"
+  "mui_beads|$mui_joined|--set|Materials/sand/mu(I)/Static friction angle=20.9|--set|Materials/sand/mu(I)/Dynamic friction angle=32.76"
 )
 # Only the variants named on the command line after the folder, if any
 # (e.g. scripts/flume_rest_study.sh out usf pic).

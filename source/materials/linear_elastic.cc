@@ -22,7 +22,8 @@ namespace MPM
     void
     LinearElastic::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                  SymmetricTensor<2, 3>       &stress,
-                                 const ArrayView<double> &) const
+                                 const ArrayView<double> &,
+                                 const double) const
     {
       elasticity.add_stress_increment(strain_increment, stress);
     }

@@ -391,7 +391,8 @@ namespace MPM
     void
     MohrCoulomb::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                SymmetricTensor<2, 3>       &stress,
-                               const ArrayView<double>     &state) const
+                               const ArrayView<double>     &state,
+                               const double) const
     {
       AssertIndexRange(0, state.size());
       // The same elastic predictor as LinearElastic, so that an elastic

@@ -1231,7 +1231,8 @@ namespace MPM
     material.model->update_stress(strain_increment,
                                   stress,
                                   ArrayView<double>(props + Layout::state,
-                                                    n_state));
+                                                    n_state),
+                                  dt);
     write_symmetric_tensor(stress, &props[Layout::stress]);
     write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
                              strain_increment,

@@ -134,7 +134,7 @@ namespace
     double state = 0;
     model.update_stress(SymmetricTensor<2, 3>(),
                         stress,
-                        ArrayView<double>(&state, 1));
+                        ArrayView<double>(&state, 1), 1.);
     return state;
   }
 
@@ -223,8 +223,8 @@ namespace
     de[0][1]                   = 3e-4;
     SymmetricTensor<2, 3> s_mc = diagonal(-1e5, -1e5, -1e5), s_le = s_mc;
     double                state = 0;
-    mc->update_stress(de, s_mc, ArrayView<double>(&state, 1));
-    le.update_stress(de, s_le, ArrayView<double>());
+    mc->update_stress(de, s_mc, ArrayView<double>(&state, 1), 1.);
+    le.update_stress(de, s_le, ArrayView<double>(), 1.);
     std::cout << "    sigma_xx = " << s_mc[0][0] << ", linear elastic "
               << s_le[0][0] << "; sigma_xy = " << s_mc[0][1]
               << ", linear elastic " << s_le[0][1]
@@ -258,7 +258,7 @@ namespace
     unsigned int first_plastic = 0;
     for (unsigned int step = 1; step <= 200; ++step)
     {
-      model->update_stress(de, stress, ArrayView<double>(&state, 1));
+      model->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
       if (state > 0 && first_plastic == 0)
         first_plastic = step;
     }
@@ -315,7 +315,7 @@ namespace
     de[0][0]                     = 0.2;
     de[0][1]                     = 0.05;
     double state                 = 0;
-    sand->update_stress(de, stress, ArrayView<double>(&state, 1));
+    sand->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
     std::cout << "    c = 0, tensile increment 0.2 from -100 kPa: max "
                  "|sigma_ij| = "
               << max_abs(stress) << ", reference 0\n";
@@ -425,7 +425,7 @@ namespace
       p.E / (1 + p.nu) * de;
     const unsigned int set   = active_set(*model, trial);
     double             state = 0;
-    model->update_stress(de, stress, ArrayView<double>(&state, 1));
+    model->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
     std::cout << "    " << set_name(set) << ", plastic shear strain " << state
               << "; mean stress " << mean(stress)
               << ", elastic prediction -1e5 + K tr(de) = "
@@ -439,7 +439,7 @@ namespace
     const auto model2   = make_model(dilatant);
     stress              = diagonal(-1e5, -1e5, -1e5);
     state               = 0;
-    model2->update_stress(de, stress, ArrayView<double>(&state, 1));
+    model2->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
     std::cout << "    psi = 10 for comparison: mean stress " << mean(stress)
               << " (dilation lowers the compression)\n";
   }

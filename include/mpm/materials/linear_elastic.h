@@ -24,7 +24,8 @@ namespace MPM
       void
       update_stress(const SymmetricTensor<2, 3> &strain_increment,
                     SymmetricTensor<2, 3>       &stress,
-                    const ArrayView<double>     &state) const override;
+                    const ArrayView<double>     &state,
+                    const double                 time_step) const override;
 
       double
       strain_energy_density(const SymmetricTensor<2, 3> &stress) const override;

@@ -45,12 +45,15 @@ namespace MPM
 
     /**
      * Stress update for one point. @p strain_increment is the
-     * symmetric velocity gradient times dt.
+     * symmetric velocity gradient times the time step @p time_step (which
+     * rate-dependent models need to turn it into a strain rate; the others
+     * ignore it).
      */
     virtual void
     update_stress(const SymmetricTensor<2, 3> &strain_increment,
                   SymmetricTensor<2, 3>       &stress,
-                  const ArrayView<double>     &state) const = 0;
+                  const ArrayView<double>     &state,
+                  const double                 time_step) const = 0;
 
     /**
      * Stored elastic energy per unit volume for the given stress, used by
