@@ -25,12 +25,14 @@ mpm_install_packages() {
 }
 
 # mpm_setup BUILD_TYPE: configure (once) and build build/<build_type lowercase>.
-# With MPM_BUILD_DIR set, that build is used as it is (nothing is built: a
-# long sweep keeps its executable while the sources change).
+# With MPM_PREBUILT_DIR set in the environment, that build is used as it is
+# (nothing is built: a long sweep keeps its executable while the sources
+# change).
 mpm_setup() {
   local type="$1"
-  if [ -n "${MPM_BUILD_DIR:-}" ]; then
-    [ -x "$MPM_BUILD_DIR/mpm" ] || { echo "MPM_BUILD_DIR=$MPM_BUILD_DIR holds no mpm executable" >&2; exit 1; }
+  if [ -n "${MPM_PREBUILT_DIR:-}" ]; then
+    [ -x "$MPM_PREBUILT_DIR/mpm" ] || { echo "MPM_PREBUILT_DIR=$MPM_PREBUILT_DIR holds no mpm executable" >&2; exit 1; }
+    MPM_BUILD_DIR="$MPM_PREBUILT_DIR"
     return 0
   fi
   local dir="$MPM_ROOT/build/${type,,}"

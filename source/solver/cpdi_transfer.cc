@@ -1,6 +1,6 @@
 // The Simulator's particle-grid passes with CPDI weights (PointDomains):
 // every point acts on the nodes through the corners of its domain. The
-// linear-weight passes, in simulator.cc, are the same passes with one
+// linear-weight passes, in linear_transfer.cc, are the same passes with one
 // "corner" per point at the point itself, alpha = 1 and the gradient of the
 // mesh functions in place of beta; kept apart so that the fast path keeps
 // its per-cell layout.

@@ -304,7 +304,12 @@ namespace MPM
       const ActiveCell &cell,
       const std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
                   &values,
-      NodalVector &v) const;
+      NodalVector &v) const
+    {
+      for (unsigned int i = 0; i < GeometryInfo<dim>::vertices_per_cell; ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          v.local_element(cell.dofs[i][c]) += values[i][c];
+    }
 
     /// Sum what every rank added to the entries of @p v (compress) and
     /// give every rank the sums at its ghost nodes.
