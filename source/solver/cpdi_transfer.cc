@@ -451,28 +451,16 @@ namespace MPM
                 // Each node receives the point's affine field there,
                 // v_p + C_p (x_i - xbar_p).
                 const auto dx = corner_node_offsets(cell, k);
-                const Tensor<2, dim> &C = point_affine[corner_point[k]];
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  {
-                    const double mi = N[i] * m;
-                    const auto   vi = v + C * dx[i];
-                    for (unsigned int c = 0; c < dim; ++c)
-                      {
-                        mass[i][c] += mi;
-                        momentum[i][c] += mi * vi[c];
-                      }
-                  }
+                add_mass_and_momentum(N,
+                                      m,
+                                      v,
+                                      &point_affine[corner_point[k]],
+                                      &dx,
+                                      mass,
+                                      momentum);
               }
             else
-              for (unsigned int i = 0; i < n_vertices; ++i)
-                {
-                  const double mi = N[i] * m;
-                  for (unsigned int c = 0; c < dim; ++c)
-                    {
-                      mass[i][c] += mi;
-                      momentum[i][c] += mi * v[c];
-                    }
-                }
+              add_mass_and_momentum(N, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
               {
                 // f_i = -V sigma grad w_i + w_i m g, corner by corner.

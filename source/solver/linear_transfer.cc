@@ -42,12 +42,9 @@ namespace MPM
             shape_functions[k].value, vertex_offsets(cell, shape_functions[k]));
     for (unsigned int p = 0; p < n_points; ++p)
       {
-        double        *affine = point_properties[p] + transfer_slot;
-        Tensor<2, dim> C;
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            C[a][b] = affine[a * dim + b];
-        VelocityTransfer<dim>::store_affine(C, point_sum_D[p], affine);
+        double *affine = point_properties[p] + transfer_slot;
+        VelocityTransfer<dim>::store_affine(
+          VelocityTransfer<dim>::stored_affine(affine), point_sum_D[p], affine);
       }
   }
 
@@ -143,27 +140,11 @@ namespace MPM
                 const auto dx = vertex_offsets(cell, sf);
                 const auto C =
                   transfer.affine_matrix(sf, dx, props + transfer_slot);
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  {
-                    const double mi = sf.value[i] * m;
-                    const auto   vi = v + C * dx[i];
-                    for (unsigned int c = 0; c < dim; ++c)
-                      {
-                        mass[i][c] += mi;
-                        momentum[i][c] += mi * vi[c];
-                      }
-                  }
+                add_mass_and_momentum(sf.value, m, v, &C, &dx, mass, momentum);
               }
             else
-              for (unsigned int i = 0; i < n_vertices; ++i)
-                {
-                  const double mi = sf.value[i] * m;
-                  for (unsigned int c = 0; c < dim; ++c)
-                    {
-                      mass[i][c] += mi;
-                      momentum[i][c] += mi * v[c];
-                    }
-                }
+              add_mass_and_momentum(
+                sf.value, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
               add_point_forces(props, sf, g, forces);
           }

@@ -311,6 +311,39 @@ namespace MPM
           v.local_element(cell.dofs[i][c]) += values[i][c];
     }
 
+    /**
+     * Add one weight set's share of a point to a cell's per-vertex sums
+     * (particle-to-grid): mass N_i m to @p mass, momentum N_i m v_i to
+     * @p momentum, with v_i = v the point's velocity, or with APIC (@p C
+     * not null) its affine field there, v + C dx_i (@p dx the vertices'
+     * offsets from the point's affine centre). Shared by the linear-weight
+     * pass (one set per point) and the CPDI pass (one per corner, m the
+     * corner's share alpha_c m_p).
+     */
+    static void
+    add_mass_and_momentum(
+      const std::array<double, GeometryInfo<dim>::vertices_per_cell> &N,
+      const double                                                    m,
+      const Tensor<1, dim>                                           &v,
+      const Tensor<2, dim>                                           *C,
+      const std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+        *dx,
+      std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> &mass,
+      std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
+        &momentum)
+    {
+      for (unsigned int i = 0; i < GeometryInfo<dim>::vertices_per_cell; ++i)
+        {
+          const double         mi = N[i] * m;
+          const Tensor<1, dim> vi = C ? v + *C * (*dx)[i] : v;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              mass[i][c] += mi;
+              momentum[i][c] += mi * vi[c];
+            }
+        }
+    }
+
     /// Sum what every rank added to the entries of @p v (compress) and
     /// give every rank the sums at its ghost nodes.
     static void

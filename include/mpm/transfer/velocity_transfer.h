@@ -162,10 +162,7 @@ namespace MPM
     Tensor<2, dim>
     affine_matrix(const double *affine, const Tensor<2, dim> &D) const
     {
-      Tensor<2, dim> C;
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          C[a][b] = affine[a * dim + b];
+      Tensor<2, dim> C = stored_affine(affine);
       if (!limit_affine_energy)
         return C;
       const double energy = scalar_product(C * D, C);
@@ -260,6 +257,17 @@ namespace MPM
             const unsigned int b = (a + 1) % 3, c = (a + 2) % 3;
             affine[dim * dim + 1 + a] = CD[c][b] - CD[b][c];
           }
+    }
+
+    /// The matrix C_p a point stores in its slots @p affine, as it is.
+    static Tensor<2, dim>
+    stored_affine(const double *affine)
+    {
+      Tensor<2, dim> C;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          C[a][b] = affine[a * dim + b];
+      return C;
     }
 
     /// The affine part's angular momentum per unit mass stored by
