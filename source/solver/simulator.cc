@@ -14,7 +14,6 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/solver/simulator.h>
-#include <mpm/transfer/point_domains.h>
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <chrono>
@@ -76,7 +75,7 @@ namespace MPM
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
     VelocityTransfer<dim>::declare_parameters(prm);
-    PointDomains<dim>::declare_parameters(prm);
+    ParticleGridWeights<dim>::declare_parameters(prm);
     OutputWriter<dim>::declare_parameters(prm);
     LoadBalancing<dim>::declare_parameters(prm);
     Checkpointing<dim>::declare_parameters(prm);
@@ -98,10 +97,15 @@ namespace MPM
     : mpi_communicator(comm)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , grid(comm)
+    , point_update(materials, transfer, point_relocation, time_stepping)
     // Rank 0's own timings: with MPI_COMM_SELF the timer does not try to
     // synchronise in its destructor when an input error unwinds the stack.
     , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
   {}
+
+
+  template <int dim>
+  Simulator<dim>::~Simulator() = default;
 
 
   template <int dim>
@@ -123,9 +127,23 @@ namespace MPM
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
-    point_domains.parse_parameters(prm);
+    weights = ParticleGridWeights<dim>::create(
+      prm,
+      TransferContext<dim>{particle_handler,
+                           grid,
+                           nodal,
+                           transfer,
+                           point_update,
+                           time_stepping,
+                           step,
+                           time_step,
+                           local_dofs_of_cells,
+                           timer});
+    prm.enter_subsection("Transfer");
+    const bool linear_weights = prm.get("Particle-grid weights") == "linear";
+    prm.leave_subsection();
     if (transfer.scheme() == TransferScheme::apic &&
-        time_stepping.scheme != UpdateScheme::musl && !point_domains.enabled())
+        time_stepping.scheme != UpdateScheme::musl && linear_weights)
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
                "scheme' USF or USL fits each point's affine matrix to the "
                "end-of-step grid velocity, which on bilinear cells was "
@@ -160,7 +178,7 @@ namespace MPM
                         "state_" + std::to_string(i));
     for (const auto &name : transfer.point_property_names())
       names.push_back(name);
-    for (const auto &name : point_domains.point_property_names())
+    for (const auto &name : weights->point_property_names())
       names.push_back(name);
     return names;
   }
@@ -177,14 +195,16 @@ namespace MPM
 
     setup_nodal_fields();
 
-    // The material state, then the transfer's own slots (APIC's C_p).
+    // The material state, then the transfer scheme's own slots (APIC's
+    // C_p), then the weights' (CPDI's domain).
     transfer_slot =
       PropertyLayout<dim>::state + materials.max_n_state_variables();
-    domain_slot = transfer_slot + transfer.n_point_properties();
+    const unsigned int weights_slot =
+      transfer_slot + transfer.n_point_properties();
+    weights->set_property_slots(transfer_slot, weights_slot);
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
-                                domain_slot +
-                                  point_domains.n_point_properties());
+                                weights_slot + weights->n_point_properties());
     load_balancing.connect(grid.triangulation, particle_handler);
     particle_handler.signals.particle_lost.connect(
       [this](const typename Particles::ParticleIterator<dim> &particle,
@@ -282,12 +302,12 @@ namespace MPM
   {
     const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
       grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
-    for (NodalVector *v : {&nodal_mass,
-                           &nodal_momentum,
-                           &nodal_force,
-                           &nodal_velocity,
-                           &nodal_velocity_new,
-                           &nodal_acceleration,
+    for (NodalVector *v : {&nodal.mass,
+                           &nodal.momentum,
+                           &nodal.force,
+                           &nodal.velocity,
+                           &nodal.velocity_new,
+                           &nodal.acceleration,
                            &filtered_velocity,
                            &round_trip_velocity,
                            &round_trip_momentum})
@@ -314,34 +334,9 @@ namespace MPM
               local[v][c] = partitioner->global_to_local(
                 cell_dofs[grid.fe.component_to_system_index(c, v)]);
         }
-    dof_is_active.assign(nodal_mass.locally_owned_size() +
-                           partitioner->n_ghost_indices(),
-                         0);
-    active_dofs.clear();
-    boundary_conditions.setup(grid, nodal_mass);
+    boundary_conditions.setup(grid, nodal.mass);
     point_relocation.initialize(grid);
-    cell_patches.clear();
-    if (point_domains.enabled())
-      {
-        // Each cell's patch: itself first, then the non-artificial cells
-        // sharing a vertex with it (where CPDI's corners may lie).
-        const auto sets = GridTools::vertex_to_cell_map(grid.triangulation);
-        cell_patches.assign(grid.triangulation.n_active_cells(), {});
-        corner_slot_of_cell.assign(grid.triangulation.n_active_cells(),
-                                   numbers::invalid_unsigned_int);
-        for (const auto &cell : grid.triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              auto &patch = cell_patches[cell->active_cell_index()];
-              patch.push_back(cell);
-              for (const unsigned int v : cell->vertex_indices())
-                for (const auto &neighbour : sets[cell->vertex_index(v)])
-                  if (!neighbour->is_artificial() &&
-                      std::find(patch.begin(), patch.end(), neighbour) ==
-                        patch.end())
-                    patch.push_back(neighbour);
-            }
-      }
+    weights->setup_partition();
   }
 
 
@@ -521,36 +516,18 @@ namespace MPM
   void
   Simulator<dim>::zero_nodal_fields()
   {
-    for (NodalVector *v : {&nodal_mass,
-                           &nodal_momentum,
-                           &nodal_force,
-                           &nodal_velocity,
-                           &nodal_velocity_new,
-                           &nodal_acceleration})
-      zero_touched_entries(*v);
+    for (NodalVector *v : {&nodal.mass,
+                           &nodal.momentum,
+                           &nodal.force,
+                           &nodal.velocity,
+                           &nodal.velocity_new,
+                           &nodal.acceleration})
+      weights->zero_touched_entries(*v);
     if (transfer.scheme() == TransferScheme::xpic)
       for (NodalVector *v :
            {&filtered_velocity, &round_trip_velocity, &round_trip_momentum})
-        zero_touched_entries(*v);
+        weights->zero_touched_entries(*v);
     mark_locally_computed_fields();
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::zero_touched_entries(NodalVector &v) const
-  {
-    // Only the entries the previous step touched are non-zero: those of
-    // this rank's points (active_dofs, owned or ghost) and the owned
-    // entries other ranks added to in compress() (the partitioner's import
-    // indices). Clearing only them keeps the cost independent of the size
-    // of the empty mesh, on one rank or many.
-    for (const unsigned int i : active_dofs)
-      v.local_element(i) = 0;
-    for (const auto &range : v.get_partitioner()->import_indices())
-      for (unsigned int i = range.first; i < range.second; ++i)
-        v.local_element(i) = 0;
-    v.zero_out_ghost_values();
   }
 
 
@@ -561,9 +538,9 @@ namespace MPM
     // Velocity and acceleration are computed by every rank for all nodes
     // its points touch, ghosts included, from the summed mass, momentum and
     // force: their ghost entries are valid without an exchange.
-    for (const NodalVector *v : {&nodal_velocity,
-                                 &nodal_velocity_new,
-                                 &nodal_acceleration,
+    for (const NodalVector *v : {&nodal.velocity,
+                                 &nodal.velocity_new,
+                                 &nodal.acceleration,
                                  &filtered_velocity,
                                  &round_trip_velocity})
       v->set_ghost_state(true);
@@ -575,11 +552,11 @@ namespace MPM
   Simulator<dim>::compute_nodal_velocity(NodalVector &velocity_out)
   {
     TimerOutput::Scope t(timer, "nodal update");
-    for (const unsigned int i : active_dofs)
+    for (const unsigned int i : weights->active_dofs())
       {
-        const double m = nodal_mass.local_element(i);
+        const double m = nodal.mass.local_element(i);
         velocity_out.local_element(i) =
-          m > 0 ? nodal_momentum.local_element(i) / m : 0.;
+          m > 0 ? nodal.momentum.local_element(i) / m : 0.;
       }
     // The strain rate's velocity: a node the last nodal update held on its
     // wall stays held (BoundaryConditions::Contact).
@@ -595,49 +572,49 @@ namespace MPM
     TimerOutput::Scope t(timer, "nodal update");
     const double       dt    = time_step;
     const double       alpha = time_stepping.local_damping;
-    for (const unsigned int i : active_dofs)
+    for (const unsigned int i : weights->active_dofs())
       {
-        const double m = nodal_mass.local_element(i);
-        double       f = nodal_force.local_element(i);
+        const double m = nodal.mass.local_element(i);
+        double       f = nodal.force.local_element(i);
         if (alpha > 0)
           {
             // Cundall's local damping: a force against the motion,
             // proportional to the unbalanced force.
-            const double v = nodal_velocity.local_element(i);
+            const double v = nodal.velocity.local_element(i);
             f -= alpha * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
           }
-        nodal_acceleration.local_element(i) = m > 0 ? f / m : 0.;
+        nodal.acceleration.local_element(i) = m > 0 ? f / m : 0.;
       }
     // The step starts from the velocity the points brought, u = p/m, not
-    // from nodal_velocity, in which compute_nodal_velocity() has already
+    // from nodal.velocity, in which compute_nodal_velocity() has already
     // removed the normal velocity into the walls (for the stress update).
     // That removal is part of the wall's normal impulse, and Coulomb
     // friction must act on all of it: starting from the constrained
     // velocity left friction out of the impulse with which the wall stops
     // the material arriving at it (in the sliding block, 5e-5 of the
     // normal force, which the friction limit amplified into a 3e-4 error
-    // of the acceleration at mu = 0.5). nodal_velocity_new holds u until
+    // of the acceleration at mu = 0.5). nodal.velocity_new holds u until
     // it is advanced.
     const auto brought_velocity = [this](const unsigned int i) {
-      const double m = nodal_mass.local_element(i);
-      return m > 0 ? nodal_momentum.local_element(i) / m : 0.;
+      const double m = nodal.mass.local_element(i);
+      return m > 0 ? nodal.momentum.local_element(i) / m : 0.;
     };
-    for (const unsigned int i : active_dofs)
-      nodal_velocity_new.local_element(i) = brought_velocity(i);
-    boundary_conditions.apply_friction(nodal_mass,
-                                       nodal_velocity_new,
-                                       nodal_acceleration,
+    for (const unsigned int i : weights->active_dofs())
+      nodal.velocity_new.local_element(i) = brought_velocity(i);
+    boundary_conditions.apply_friction(nodal.mass,
+                                       nodal.velocity_new,
+                                       nodal.acceleration,
                                        dt);
-    for (const unsigned int i : active_dofs)
-      nodal_velocity_new.local_element(i) +=
-        dt * nodal_acceleration.local_element(i);
-    boundary_conditions.constrain_updated_velocity(nodal_velocity_new);
+    for (const unsigned int i : weights->active_dofs())
+      nodal.velocity_new.local_element(i) +=
+        dt * nodal.acceleration.local_element(i);
+    boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
     // The acceleration consistent with the constrained velocity change
     // from u, so that the FLIP update of the points respects the
     // constraints too.
-    for (const unsigned int i : active_dofs)
-      nodal_acceleration.local_element(i) =
-        (nodal_velocity_new.local_element(i) - brought_velocity(i)) / dt;
+    for (const unsigned int i : weights->active_dofs())
+      nodal.acceleration.local_element(i) =
+        (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
   }
 
 
@@ -648,7 +625,7 @@ namespace MPM
     // A bad point makes the largest speed infinite on every rank: the
     // reduction that exists anyway tells all ranks to stop.
     max_point_speed = Utilities::MPI::max(
-      first_bad_point.empty() ? std::sqrt(v_max2) :
+      point_update.first_bad_point().empty() ? std::sqrt(v_max2) :
                                 std::numeric_limits<double>::infinity(),
       mpi_communicator);
     if (!std::isfinite(max_point_speed))
@@ -663,7 +640,7 @@ namespace MPM
   {
     using Layout = PropertyLayout<dim>;
     // Which point: the first bad one, or else the fastest.
-    std::string here = first_bad_point;
+    std::string here = point_update.first_bad_point();
     if (here.empty())
       {
         double fastest = -1;
@@ -718,123 +695,6 @@ namespace MPM
 
   template <int dim>
   void
-  Simulator<dim>::update_stress(const NodalVector &velocity,
-                                const bool         set_affine)
-  {
-    if (point_domains.enabled())
-      return update_stress_cpdi(velocity);
-    TimerOutput::Scope t(timer, "stress update");
-    const bool average = time_stepping.average_volumetric_strain;
-    // sum_i v_i (x) grad N_i at a point of @p cell.
-    const auto velocity_gradient = [&velocity](const ActiveCell            &cell,
-                                               const Q1ShapeFunctions<dim> &sf) {
-      Tensor<2, dim> grad_v;
-      for (unsigned int i = 0; i < sf.value.size(); ++i)
-        {
-          Tensor<1, dim> v;
-          for (unsigned int c = 0; c < dim; ++c)
-            v[c] = velocity.local_element(cell.dofs[i][c]);
-          grad_v += outer_product(v, sf.gradient[i]);
-        }
-      return grad_v;
-    };
-    unsigned int k = 0;
-    for (const auto &cell : active_cells)
-      {
-        // With 'Volumetric strain averaging = cell', the cell's velocity
-        // gradients first, to average their traces.
-        if (average)
-          {
-            point_sum_gradient.resize(cell.n_points);
-            for (unsigned int q = 0; q < cell.n_points; ++q)
-              point_sum_gradient[q] =
-                velocity_gradient(cell, shape_functions[k + q]);
-            average_volumetric_part(point_properties.data() + k,
-                                    point_sum_gradient.data(),
-                                    cell.n_points);
-          }
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const auto          &sf     = shape_functions[k];
-            const Tensor<2, dim> grad_v = average ?
-                                            point_sum_gradient[q] :
-                                            velocity_gradient(cell, sf);
-            double *props = point_properties[k];
-            update_point_stress(props, grad_v);
-            // MUSL with APIC: the affine matrix is this velocity gradient
-            // (see VelocityTransfer::store_affine()).
-            if (set_affine)
-              VelocityTransfer<dim>::store_affine(
-                grad_v,
-                VelocityTransfer<dim>::second_moment(sf.value,
-                                                     vertex_offsets(cell, sf)),
-                props + transfer_slot);
-          }
-      }
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::average_volumetric_part(double *const  *props,
-                                          Tensor<2, dim> *grad_v,
-                                          const unsigned int n) const
-  {
-    using Layout   = PropertyLayout<dim>;
-    double volume  = 0, trace = 0;
-    for (unsigned int q = 0; q < n; ++q)
-      {
-        const double V = props[q][Layout::volume];
-        volume += V;
-        trace += V * dealii::trace(grad_v[q]);
-      }
-    if (!(volume > 0))
-      return;
-    const double mean = trace / volume;
-    for (unsigned int q = 0; q < n; ++q)
-      {
-        const double shift = (mean - dealii::trace(grad_v[q])) / dim;
-        for (unsigned int d = 0; d < dim; ++d)
-          grad_v[q][d][d] += shift;
-      }
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::update_point_stress(double               *props,
-                                      const Tensor<2, dim> &grad_v)
-  {
-    using Layout               = PropertyLayout<dim>;
-    const double       dt      = time_step;
-    const unsigned int n_state = materials.max_n_state_variables();
-    SymmetricTensor<2, 3> strain_increment;
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = a; b < dim; ++b)
-        strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
-
-    const Material &material =
-      materials[static_cast<unsigned int>(props[Layout::material_id])];
-    SymmetricTensor<2, 3> stress =
-      read_symmetric_tensor(&props[Layout::stress]);
-    material.model->update_stress(strain_increment,
-                                  stress,
-                                  ArrayView<double>(props + Layout::state,
-                                                    n_state),
-                                  dt);
-    write_symmetric_tensor(stress, &props[Layout::stress]);
-    write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
-                             strain_increment,
-                           &props[Layout::strain]);
-    // Volume follows the determinant of the incremental deformation
-    // gradient I + dt grad v.
-    props[Layout::volume] *=
-      determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
-  }
-
-
-  template <int dim>
-  void
   Simulator<dim>::relocate_points()
   {
     TimerOutput::Scope t(timer, "locate points");
@@ -872,29 +732,106 @@ namespace MPM
     zero_nodal_fields();
     prepare_transfer();
     time_step = compute_time_step();
+    point_update.set_time_step(time_step);
     const UpdateScheme scheme = time_stepping.scheme;
-    map_mass_and_momentum(scheme != UpdateScheme::usf);
-    compute_nodal_velocity(nodal_velocity);
+    // Particle to grid (with the forces, unless USF updates the stress
+    // first).
+    weights->map_mass_and_momentum(scheme != UpdateScheme::usf);
+    compute_nodal_velocity(nodal.velocity);
     if (scheme == UpdateScheme::usf)
       {
-        update_stress(nodal_velocity);
-        map_forces();
+        weights->update_stress(nodal.velocity, false);
+        weights->map_forces();
       }
     if (transfer.scheme() == TransferScheme::xpic && transfer.xpic_order() > 1)
       filter_brought_velocity();
     update_nodal_kinematics();
-    update_points_from_grid(scheme == UpdateScheme::musl);
+    // Grid to particle (MUSL: and the new momentum back to the nodes).
+    set_max_point_speed(
+      weights->update_points_from_grid(scheme == UpdateScheme::musl));
     if (scheme == UpdateScheme::usl)
-      update_stress(nodal_velocity_new);
+      weights->update_stress(nodal.velocity_new, false);
     else if (scheme == UpdateScheme::musl)
       {
-        compute_nodal_velocity(nodal_velocity_new);
-        update_stress(nodal_velocity_new,
-                      transfer.scheme() == TransferScheme::apic);
+        compute_nodal_velocity(nodal.velocity_new);
+        weights->update_stress(nodal.velocity_new,
+                               transfer.scheme() == TransferScheme::apic);
       }
     time += time_step;
     ++step;
     relocate_points();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::prepare_transfer()
+  {
+    active_cell_size =
+      Utilities::MPI::min(weights->prepare(), mpi_communicator);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::filter_brought_velocity()
+  {
+    TimerOutput::Scope t(timer, "transfer filter");
+    const auto        &coefficients = transfer.filter_coefficients();
+    const auto        &active_dofs  = weights->active_dofs();
+    // u_1 = the constrained brought velocity (compute_nodal_velocity()).
+    for (const unsigned int i : active_dofs)
+      {
+        const double u                       = nodal.velocity.local_element(i);
+        round_trip_velocity.local_element(i) = u;
+        filtered_velocity.local_element(i)   = coefficients[0] * u;
+      }
+    for (unsigned int k = 1; k < coefficients.size(); ++k)
+      {
+        // u_{k+1} = P S S+ u_k: interpolate to the points, project back
+        // with their masses, constrain.
+        weights->round_trip(round_trip_velocity, round_trip_momentum);
+        for (const unsigned int i : active_dofs)
+          {
+            const double m = nodal.mass.local_element(i);
+            round_trip_velocity.local_element(i) =
+              m > 0 ? round_trip_momentum.local_element(i) / m : 0.;
+          }
+        // The same projection as u_1's (compute_nodal_velocity()).
+        boundary_conditions.project_velocity(
+          round_trip_velocity,
+          BoundaryConditions<dim>::Contact::as_last_update);
+        for (const unsigned int i : active_dofs)
+          filtered_velocity.local_element(i) +=
+            coefficients[k] * round_trip_velocity.local_element(i);
+      }
+    // The nodal update starts from the brought velocity p / m: it is now
+    // the filtered one, so friction and the walls act on it.
+    for (const unsigned int i : active_dofs)
+      nodal.momentum.local_element(i) =
+        nodal.mass.local_element(i) * filtered_velocity.local_element(i);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::initialize_affine_matrices()
+  {
+    // The generator wrote the initial velocity gradient into C_p; what its
+    // affine part carries (VelocityTransfer::store_affine()) depends on the
+    // point's second moment under the weights of the first step.
+    prepare_transfer();
+    weights->second_moments(second_moments);
+    const auto &points = weights->point_properties();
+    for (unsigned int p = 0; p < points.size(); ++p)
+      {
+        double *affine = points[p] + transfer_slot;
+        VelocityTransfer<dim>::store_affine(
+          VelocityTransfer<dim>::stored_affine(affine),
+          second_moments[p],
+          affine);
+      }
+    second_moments.clear();
   }
 
 

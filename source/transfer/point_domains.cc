@@ -12,17 +12,6 @@ namespace MPM
     prm.enter_subsection("Transfer");
     {
       prm.declare_entry(
-        "Particle-grid weights",
-        "linear",
-        Patterns::Selection("linear|cpdi"),
-        "The weights by which points and nodes exchange mass, momentum and "
-        "force. 'linear': the mesh's bilinear functions at the point (a "
-        "point acts on the vertices of its cell only: forces jump when it "
-        "crosses a cell edge). 'cpdi': the point's parallelogram domain, "
-        "which deforms with it, averages the mesh functions over it "
-        "(Sadeghirad et al. 2011); smooth across cell edges, about four "
-        "times the transfer cost (doc/convergence.md).");
-      prm.declare_entry(
         "CPDI stretch limit",
         "2",
         Patterns::Double(1),
@@ -41,9 +30,6 @@ namespace MPM
   PointDomains<dim>::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Transfer");
-    weights = prm.get("Particle-grid weights") == "cpdi" ?
-                WeightFunctions::cpdi :
-                WeightFunctions::linear;
     stretch_limit = prm.get_double("CPDI stretch limit");
     prm.leave_subsection();
   }
@@ -54,12 +40,10 @@ namespace MPM
   PointDomains<dim>::point_property_names() const
   {
     std::vector<std::string> names;
-    if (enabled())
-      for (unsigned int c = 0; c < n_corners; ++c)
-        for (unsigned int d = 0; d < dim; ++d)
-          names.push_back("domain_corner" + std::to_string(c) + "_" + "xyz"[d]);
-    if (enabled())
-      names.emplace_back("domain_scale");
+    for (unsigned int c = 0; c < n_corners; ++c)
+      for (unsigned int d = 0; d < dim; ++d)
+        names.push_back("domain_corner" + std::to_string(c) + "_" + "xyz"[d]);
+    names.emplace_back("domain_scale");
     return names;
   }
 

@@ -168,7 +168,6 @@ main()
     ParameterHandler prm;
     PointDomains<2>::declare_parameters(prm);
     prm.enter_subsection("Transfer");
-    prm.set("Particle-grid weights", "cpdi");
     prm.set("CPDI stretch limit", "2");
     prm.leave_subsection();
     PointDomains<2> domains;

@@ -13,6 +13,26 @@ namespace MPM
    * of neighbouring ranks to shared nodes.
    */
   using NodalVector = dealii::LinearAlgebra::distributed::Vector<double>;
+
+  /**
+   * The nodal fields of one explicit step: what particle-to-grid writes
+   * (mass, momentum, force), what the nodal update makes of them
+   * (velocity at the start of the step, end-of-step velocity, and the
+   * acceleration consistent with the constrained velocity change), and
+   * what grid-to-particle reads. Mass is lumped and stored in each
+   * component's entry.
+   */
+  struct NodalFields
+  {
+    NodalVector mass;
+    NodalVector momentum;
+    NodalVector force;
+    /// Constrained nodal velocity at the start of the step.
+    NodalVector velocity;
+    /// Constrained nodal velocity at the end of the step.
+    NodalVector velocity_new;
+    NodalVector acceleration;
+  };
 } // namespace MPM
 
 #endif

@@ -15,24 +15,6 @@ namespace MPM
   using namespace dealii;
 
   /**
-   * Which particle-grid weights the transfers use ("Transfer/Particle-grid
-   * weights" in the parameter file).
-   */
-  enum class WeightFunctions
-  {
-    /// The mesh's own bilinear (trilinear) functions at the point: a point
-    /// acts only on the vertices of the cell it is in, so its force on a
-    /// node jumps when it crosses a cell edge (the cell-crossing error).
-    linear,
-    /// CPDI (Sadeghirad, Brannon and Burghardt 2011): each point owns a
-    /// quadrilateral (hexahedral) domain that deforms with it; its
-    /// weights are the mesh functions averaged over the domain,
-    /// interpolated from the domain's corners. Smooth in the point's
-    /// position: no cell-crossing error.
-    cpdi
-  };
-
-  /**
    * The material points' domains for CPDI on the isoparametric mesh, and
    * the arithmetic that turns a domain into weights.
    *
@@ -60,7 +42,7 @@ namespace MPM
    * point's own cell or one sharing a vertex with it (the same set on one
    * rank or many: every such cell is owned or a ghost). A corner outside
    * that patch (outside the mesh, beyond a wall, or a domain stretched over
-   * more than a cell) makes the Simulator shrink the whole domain about the
+   * more than a cell) makes CpdiWeights shrink the whole domain about the
    * point (x_p + s D_c, the largest s in (0, 1] found by bisection, kept
    * in the point's last slot, doubled if possible every 8th step), so it
    * stays centred on the point: a point at a wall tends to the linear
@@ -82,23 +64,17 @@ namespace MPM
     void
     parse_parameters(ParameterHandler &prm);
 
-    bool
-    enabled() const
-    {
-      return weights == WeightFunctions::cpdi;
-    }
-
     /// The offsets x_c - x_p of a domain's corners (deal.II's vertex
     /// order).
     using Offsets = std::array<Tensor<1, dim>, n_corners>;
 
-    /// Property slots per point when enabled: the corner offsets, then
+    /// Property slots per point: the corner offsets, then
     /// the scale by which the domain is shrunk at a boundary (see the
     /// class documentation).
     unsigned int
     n_point_properties() const
     {
-      return enabled() ? scale_slot + 1 : 0;
+      return scale_slot + 1;
     }
 
     /// The slot of the shrink scale, after the corner offsets.
@@ -239,7 +215,6 @@ namespace MPM
     }
 
   private:
-    WeightFunctions weights        = WeightFunctions::linear;
     double          stretch_limit  = 2;
   };
 } // namespace MPM

@@ -1,17 +1,13 @@
-// The Simulator's particle-grid passes with CPDI weights (PointDomains):
-// every point acts on the nodes through the corners of its domain. The
-// linear-weight passes, in linear_transfer.cc, are the same passes with one
-// "corner" per point at the point itself, alpha = 1 and the gradient of the
-// mesh functions in place of beta; kept apart so that the fast path keeps
-// its per-cell layout.
+// The particle-grid passes with CPDI weights (CpdiWeights, PointDomains):
+// every point acts on the nodes through the corners of its domain.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/material_points/property_layout.h>
-#include <mpm/solver/simulator.h>
-#include <mpm/transfer/point_domains.h>
+#include <mpm/transfer/cpdi_weights.h>
 
 #include <limits>
 #include <sstream>
@@ -127,10 +123,52 @@ namespace MPM
 
 
   template <int dim>
-  void
-  Simulator<dim>::prepare_cpdi_transfer()
+  CpdiWeights<dim>::CpdiWeights(const TransferContext<dim> &context,
+                                ParameterHandler           &prm)
+    : ParticleGridWeights<dim>(context)
   {
-    TimerOutput::Scope     t(timer, "shape functions");
+    point_domains.parse_parameters(prm);
+  }
+
+
+  template <int dim>
+  void
+  CpdiWeights<dim>::setup_partition()
+  {
+    ParticleGridWeights<dim>::setup_partition();
+    // Each cell's patch: itself first, then the non-artificial cells
+    // sharing a vertex with it (where the corners may lie).
+    const auto &triangulation = this->context.grid.triangulation;
+    const auto  sets = GridTools::vertex_to_cell_map(triangulation);
+    cell_patches.assign(triangulation.n_active_cells(), {});
+    corner_slot_of_cell.assign(triangulation.n_active_cells(),
+                               numbers::invalid_unsigned_int);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          auto &patch = cell_patches[cell->active_cell_index()];
+          patch.push_back(cell);
+          for (const unsigned int v : cell->vertex_indices())
+            for (const auto &neighbour : sets[cell->vertex_index(v)])
+              if (!neighbour->is_artificial() &&
+                  std::find(patch.begin(), patch.end(), neighbour) ==
+                    patch.end())
+                patch.push_back(neighbour);
+        }
+  }
+
+
+  template <int dim>
+  double
+  CpdiWeights<dim>::prepare()
+  {
+    auto       &particle_handler = this->context.particle_handler;
+    const auto &grid             = this->context.grid;
+    const unsigned int step      = this->context.step;
+    const unsigned int domain_slot = this->own_slot;
+    auto       &point_properties = this->points;
+    auto       &shape_functions  = this->shape_functions;
+    TimerOutput::Scope     t(this->context.timer, "shape functions");
     constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
     using CellIterator = typename Triangulation<dim>::active_cell_iterator;
     using Layout       = PropertyLayout<dim>;
@@ -358,7 +396,7 @@ namespace MPM
     corner_point.resize(corners.size());
     corner_alpha.resize(corners.size());
     corner_beta.resize(corners.size());
-    const bool affine = transfer.scheme() == TransferScheme::apic;
+    const bool affine = this->affine();
     if (affine)
       corner_offset.resize(corners.size());
     for (const auto &corner : corners)
@@ -366,9 +404,10 @@ namespace MPM
         const unsigned int k =
           next[slot_of_cell[corner.cell->active_cell_index()]]++;
         if constexpr (dim == 2)
-          shape_functions[k].reinit(grid.bilinear_map(corner.cell), corner.xi);
+          this->shape_functions[k].reinit(grid.bilinear_map(corner.cell),
+                                          corner.xi);
         else
-          shape_functions[k].reinit(grid.cell_vertices(corner.cell),
+          this->shape_functions[k].reinit(grid.cell_vertices(corner.cell),
                                     corner.xi);
         corner_point[k] = corner.point;
         corner_alpha[k] = corner.alpha;
@@ -379,79 +418,49 @@ namespace MPM
     for (const CellIterator &cell : touched)
       slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
 
-    active_cells.clear();
-    active_dofs.clear();
-    double h_min = std::numeric_limits<double>::max();
+    this->clear_active_cells();
     for (unsigned int s = 0; s < touched.size(); ++s)
-      {
-        const CellIterator &cell = touched[s];
-        h_min = std::min(h_min, grid.cell_size(cell));
-        ActiveCell active{count[s],
-                          local_dofs_of_cells[cell->active_cell_index()],
-                          &grid.cell_vertices(cell)};
-        if constexpr (dim == 2)
-          active.map = &grid.bilinear_map(cell);
-        for (const auto &vertex_dofs : active.dofs)
-          for (const unsigned int local : vertex_dofs)
-            if (!dof_is_active[local])
-              {
-                dof_is_active[local] = 1;
-                active_dofs.push_back(local);
-              }
-        active_cells.push_back(active);
-      }
-    for (const unsigned int i : active_dofs)
-      dof_is_active[i] = 0;
-    active_cell_size = Utilities::MPI::min(h_min, mpi_communicator);
+      this->add_active_cell(touched[s], count[s]);
+    return this->finish_active_cells();
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::map_mass_and_momentum_cpdi(const bool with_forces)
+  CpdiWeights<dim>::map_mass_and_momentum(const bool with_forces)
   {
-    TimerOutput::Scope     t(timer, "particle to grid");
+    TimerOutput::Scope     t(this->context.timer, "particle to grid");
     using Layout                      = PropertyLayout<dim>;
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
-    const Tensor<1, dim>   g          = time_stepping.gravity;
-    const bool affine = transfer.scheme() == TransferScheme::apic;
+    const Tensor<1, dim>   g          = this->context.time_stepping.gravity;
+    const bool affine = this->affine();
     unsigned int           k          = 0;
     if (affine)
       {
         // APIC: each point's affine matrix at its weights of this step,
         // which needs its second moment D_p summed over its corners first
         // (VelocityTransfer::affine_matrix()).
-        const unsigned int n_points = point_properties.size();
-        point_sum_D.assign(n_points, Tensor<2, dim>());
-        for (const auto &cell : active_cells)
-          for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-            point_sum_D[corner_point[k]] +=
-              corner_alpha[k] *
-              VelocityTransfer<dim>::second_moment(shape_functions[k].value,
-                                                   corner_node_offsets(cell,
-                                                                       k));
+        const unsigned int n_points = this->points.size();
+        second_moments(point_sum_D);
         point_affine.resize(n_points);
         for (unsigned int p = 0; p < n_points; ++p)
-          point_affine[p] = transfer.affine_matrix(point_properties[p] +
-                                                     transfer_slot,
-                                                   point_sum_D[p]);
-        k = 0;
+          point_affine[p] = this->context.transfer.affine_matrix(
+            this->points[p] + this->transfer_slot, point_sum_D[p]);
       }
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> mass, momentum, forces;
+        VertexValues mass, momentum, forces;
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
-            const double *props = point_properties[corner_point[k]];
+            const double *props = this->points[corner_point[k]];
             const double  m     = corner_alpha[k] * props[Layout::mass];
             const auto    v     = read_vector<dim>(&props[Layout::velocity]);
-            const auto   &N     = shape_functions[k].value;
+            const auto   &N     = this->shape_functions[k].value;
             if (affine)
               {
                 // Each node receives the point's affine field there,
                 // v_p + C_p (x_i - xbar_p).
                 const auto dx = corner_node_offsets(cell, k);
-                add_mass_and_momentum(N,
+                this->add_mass_and_momentum(N,
                                       m,
                                       v,
                                       &point_affine[corner_point[k]],
@@ -460,7 +469,8 @@ namespace MPM
                                       momentum);
               }
             else
-              add_mass_and_momentum(N, m, v, nullptr, nullptr, mass, momentum);
+              this->add_mass_and_momentum(
+                N, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
               {
                 // f_i = -V sigma grad w_i + w_i m g, corner by corner.
@@ -470,61 +480,61 @@ namespace MPM
                   forces[i] += N[i] * f;
               }
           }
-        add_to_nodes(cell, mass, nodal_mass);
-        add_to_nodes(cell, momentum, nodal_momentum);
+        this->add_to_nodes(cell, mass, this->context.nodal.mass);
+        this->add_to_nodes(cell, momentum, this->context.nodal.momentum);
         if (with_forces)
-          add_to_nodes(cell, forces, nodal_force);
+          this->add_to_nodes(cell, forces, this->context.nodal.force);
       }
-    add_contributions_of_all_ranks(nodal_mass);
-    add_contributions_of_all_ranks(nodal_momentum);
+    this->add_contributions_of_all_ranks(this->context.nodal.mass);
+    this->add_contributions_of_all_ranks(this->context.nodal.momentum);
     if (with_forces)
-      add_contributions_of_all_ranks(nodal_force);
+      this->add_contributions_of_all_ranks(this->context.nodal.force);
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::map_forces_cpdi()
+  CpdiWeights<dim>::map_forces()
   {
-    TimerOutput::Scope     t(timer, "particle to grid");
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
-    const Tensor<1, dim>   g          = time_stepping.gravity;
+    TimerOutput::Scope     t(this->context.timer, "particle to grid");
+    const Tensor<1, dim>   g          = this->context.time_stepping.gravity;
     unsigned int           k          = 0;
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> forces;
+        VertexValues forces;
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
             const Tensor<1, dim> f =
-              corner_force<dim>(point_properties[corner_point[k]],
+              corner_force<dim>(this->points[corner_point[k]],
                                 corner_alpha[k],
                                 corner_beta[k],
                                 g);
-            const auto &N = shape_functions[k].value;
+            const auto &N = this->shape_functions[k].value;
             for (unsigned int i = 0; i < n_vertices; ++i)
               forces[i] += N[i] * f;
           }
-        add_to_nodes(cell, forces, nodal_force);
+        this->add_to_nodes(cell, forces, this->context.nodal.force);
       }
-    add_contributions_of_all_ranks(nodal_force);
+    this->add_contributions_of_all_ranks(this->context.nodal.force);
   }
 
 
   template <int dim>
-  void
-  Simulator<dim>::update_points_from_grid_cpdi(const bool remap_momentum)
+  double
+  CpdiWeights<dim>::update_points_from_grid(const bool remap_momentum)
   {
-    TimerOutput::Scope     t(timer, "grid to particle");
+    auto &particle_handler = this->context.particle_handler;
+    auto &updater          = this->context.point_update;
+    TimerOutput::Scope     t(this->context.timer, "grid to particle");
     using Layout                      = PropertyLayout<dim>;
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
-    const unsigned int     n_points   = point_properties.size();
+    const unsigned int     n_points   = this->points.size();
     // 1. Each point's interpolated acceleration and velocity, summed over
     //    its corners.
     point_sum_a.assign(n_points, Tensor<1, dim>());
     point_sum_b.assign(n_points, Tensor<1, dim>());
     // APIC: B_p, D_p and the velocity gradient of the end-of-step grid
     // velocity, for C_p = B_p D_p^{-1} (VelocityTransfer::fit_affine()).
-    const bool affine = transfer.scheme() == TransferScheme::apic;
+    const bool affine = this->affine();
     if (affine)
       {
         point_sum_B.assign(n_points, Tensor<2, dim>());
@@ -533,18 +543,15 @@ namespace MPM
         point_node_scale.assign(n_points, 0.);
       }
     unsigned int k = 0;
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> a_node, v_node;
-        for (unsigned int i = 0; i < n_vertices; ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              a_node[i][c] = nodal_acceleration.local_element(cell.dofs[i][c]);
-              v_node[i][c] = nodal_velocity_new.local_element(cell.dofs[i][c]);
-            }
+        const VertexValues a_node =
+          this->read_nodes(cell, this->context.nodal.acceleration);
+        const VertexValues v_node =
+          this->read_nodes(cell, this->context.nodal.velocity_new);
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
-            const auto    &N = shape_functions[k].value;
+            const auto    &N = this->shape_functions[k].value;
             Tensor<1, dim> a, v;
             for (unsigned int i = 0; i < n_vertices; ++i)
               {
@@ -570,14 +577,14 @@ namespace MPM
               }
           }
       }
-    // 2. The points, in the order of point_properties.
+    // 2. The points, in the order of this->points.
     double       v_max2 = 0;
     unsigned int p      = 0;
     for (auto point = particle_handler.begin(); point != particle_handler.end();
          ++point, ++p)
       {
-        advance_point(point,
-                      point_properties[p],
+        updater.advance(point,
+                      this->points[p],
                       point_sum_a[p],
                       point_sum_b[p],
                       point_cell_map[p],
@@ -588,24 +595,24 @@ namespace MPM
                                               point_sum_D[p],
                                               point_sum_gradient[p],
                                               point_node_scale[p],
-                                              point_properties[p] +
-                                                transfer_slot);
+                                              this->points[p] +
+                                                this->transfer_slot);
       }
     // 3. MUSL: the points' new momentum back to the nodes.
     if (remap_momentum)
       {
-        zero_touched_entries(nodal_momentum);
+        this->zero_touched_entries(this->context.nodal.momentum);
         k = 0;
-        for (const auto &cell : active_cells)
+        for (const auto &cell : this->active_cells)
           {
-            std::array<Tensor<1, dim>, n_vertices> remapped;
+            VertexValues remapped;
             for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
               {
-                const double *props = point_properties[corner_point[k]];
+                const double *props = this->points[corner_point[k]];
                 const double  m = corner_alpha[k] * props[Layout::mass];
                 const Tensor<1, dim> v =
                   read_vector<dim>(&props[Layout::velocity]);
-                const auto &N = shape_functions[k].value;
+                const auto &N = this->shape_functions[k].value;
                 if (affine)
                   {
                     // APIC's particle-to-grid with the new C_p.
@@ -618,33 +625,31 @@ namespace MPM
                   for (unsigned int i = 0; i < n_vertices; ++i)
                     remapped[i] += (N[i] * m) * v;
               }
-            add_to_nodes(cell, remapped, nodal_momentum);
+            this->add_to_nodes(cell, remapped, this->context.nodal.momentum);
           }
-        add_contributions_of_all_ranks(nodal_momentum);
+        this->add_contributions_of_all_ranks(this->context.nodal.momentum);
       }
-    set_max_point_speed(v_max2);
+    return v_max2;
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::update_stress_cpdi(const NodalVector &velocity)
+  CpdiWeights<dim>::update_stress(const NodalVector &velocity,
+                                  const bool /*set_affine: C_p is fitted in
+                                               update_points_from_grid()*/)
   {
-    TimerOutput::Scope     t(timer, "stress update");
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
-    const unsigned int     n_points   = point_properties.size();
+    TimerOutput::Scope     t(this->context.timer, "stress update");
+    const unsigned int     n_points   = this->points.size();
     // grad v_p = sum_i v_i (x) grad w_i = sum_c v(x_c) (x) beta_c.
     point_sum_gradient.assign(n_points, Tensor<2, dim>());
     unsigned int k = 0;
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> v_node;
-        for (unsigned int i = 0; i < n_vertices; ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            v_node[i][c] = velocity.local_element(cell.dofs[i][c]);
+        const VertexValues v_node = this->read_nodes(cell, velocity);
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
-            const auto    &N = shape_functions[k].value;
+            const auto    &N = this->shape_functions[k].value;
             Tensor<1, dim> v;
             for (unsigned int i = 0; i < n_vertices; ++i)
               v += N[i] * v_node[i];
@@ -652,44 +657,43 @@ namespace MPM
               outer_product(v, corner_beta[k]);
           }
       }
-    const double dt = time_step;
-    if (time_stepping.average_volumetric_strain)
+    const auto  &updater = this->context.point_update;
+    const double dt      = this->context.time_step;
+    if (updater.averages_volumetric_strain())
       for (unsigned int g = 0; g + 1 < point_cell_begin.size(); ++g)
-        average_volumetric_part(point_properties.data() + point_cell_begin[g],
-                                point_sum_gradient.data() +
-                                  point_cell_begin[g],
-                                point_cell_begin[g + 1] - point_cell_begin[g]);
+        PointUpdate<dim>::average_volumetric_part(
+          this->points.data() + point_cell_begin[g],
+          point_sum_gradient.data() + point_cell_begin[g],
+          point_cell_begin[g + 1] - point_cell_begin[g]);
     for (unsigned int p = 0; p < n_points; ++p)
       {
-        double              *props  = point_properties[p];
+        double              *props  = this->points[p];
         const Tensor<2, dim> grad_v = point_sum_gradient[p];
-        update_point_stress(props, grad_v);
+        updater.update_stress(props, grad_v);
         // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
-        const auto D = PointDomains<dim>::read(props + domain_slot);
+        const auto D = PointDomains<dim>::read(props + this->own_slot);
         PointDomains<dim>::write(point_domains.deformed_domain(D, dt * grad_v),
-                                 props + domain_slot);
+                                 props + this->own_slot);
       }
   }
 
 
   template <int dim>
   void
-  Simulator<dim>::round_trip_cpdi()
+  CpdiWeights<dim>::round_trip(const NodalVector &round_trip_velocity,
+                               NodalVector       &round_trip_momentum)
   {
     using Layout                      = PropertyLayout<dim>;
-    constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
     // S+: each point's velocity, summed over its corners.
-    point_sum_b.assign(point_properties.size(), Tensor<1, dim>());
+    point_sum_b.assign(this->points.size(), Tensor<1, dim>());
     unsigned int k = 0;
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> u_node;
-        for (unsigned int i = 0; i < n_vertices; ++i)
-          for (unsigned int c = 0; c < dim; ++c)
-            u_node[i][c] = round_trip_velocity.local_element(cell.dofs[i][c]);
+        const VertexValues u_node =
+          this->read_nodes(cell, round_trip_velocity);
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
-            const auto    &N = shape_functions[k].value;
+            const auto    &N = this->shape_functions[k].value;
             Tensor<1, dim> v;
             for (unsigned int i = 0; i < n_vertices; ++i)
               v += N[i] * u_node[i];
@@ -697,50 +701,57 @@ namespace MPM
           }
       }
     // S: the points' momentum back to the nodes with the same weights.
-    zero_touched_entries(round_trip_momentum);
+    this->zero_touched_entries(round_trip_momentum);
     k = 0;
-    for (const auto &cell : active_cells)
+    for (const auto &cell : this->active_cells)
       {
-        std::array<Tensor<1, dim>, n_vertices> sums;
+        VertexValues sums;
         for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
           {
             const unsigned int   p = corner_point[k];
             const Tensor<1, dim> mv =
-              (corner_alpha[k] * point_properties[p][Layout::mass]) *
+              (corner_alpha[k] * this->points[p][Layout::mass]) *
               point_sum_b[p];
-            const auto &N = shape_functions[k].value;
+            const auto &N = this->shape_functions[k].value;
             for (unsigned int i = 0; i < n_vertices; ++i)
               sums[i] += N[i] * mv;
           }
-        add_to_nodes(cell, sums, round_trip_momentum);
+        this->add_to_nodes(cell, sums, round_trip_momentum);
       }
-    add_contributions_of_all_ranks(round_trip_momentum);
+    this->add_contributions_of_all_ranks(round_trip_momentum);
   }
 
 
   template <int dim>
-  std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell>
-  Simulator<dim>::corner_node_offsets(const ActiveCell  &cell,
+  typename CpdiWeights<dim>::VertexValues
+  CpdiWeights<dim>::corner_node_offsets(const ActiveCell  &cell,
                                       const unsigned int k) const
   {
     // x_i - xbar_p = (x_i - x_c) + (x_c - xbar_p).
-    auto dx = vertex_offsets(cell, shape_functions[k]);
+    auto dx = this->vertex_offsets(cell, this->shape_functions[k]);
     for (auto &d : dx)
       d += corner_offset[k];
     return dx;
   }
 
 
-#define MPM_INSTANTIATE(dim)                                               \
-  template void Simulator<dim>::prepare_cpdi_transfer();                   \
-  template void Simulator<dim>::map_mass_and_momentum_cpdi(const bool);    \
-  template void Simulator<dim>::map_forces_cpdi();                         \
-  template void Simulator<dim>::update_points_from_grid_cpdi(const bool);  \
-  template void Simulator<dim>::update_stress_cpdi(const NodalVector &);   \
-  template void Simulator<dim>::round_trip_cpdi();                         \
-  template std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> \
-  Simulator<dim>::corner_node_offsets(const ActiveCell &, const unsigned int) const;
-  MPM_INSTANTIATE(2)
-  MPM_INSTANTIATE(3)
-#undef MPM_INSTANTIATE
+  template <int dim>
+  void
+  CpdiWeights<dim>::second_moments(std::vector<Tensor<2, dim>> &D) const
+  {
+    // D_p = sum_c alpha_c sum_i N_i(x_c) dx_i dx_i^T about the affine
+    // centre.
+    D.assign(this->points.size(), Tensor<2, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : this->active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+        D[corner_point[k]] +=
+          corner_alpha[k] *
+          VelocityTransfer<dim>::second_moment(this->shape_functions[k].value,
+                                               corner_node_offsets(cell, k));
+  }
+
+
+  template class CpdiWeights<2>;
+  template class CpdiWeights<3>;
 } // namespace MPM

@@ -1,0 +1,106 @@
+#ifndef mpm_material_points_point_update_h
+#define mpm_material_points_point_update_h
+
+#include <deal.II/base/tensor.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/bilinear_cell_map.h>
+#include <mpm/material_points/point_relocation.h>
+#include <mpm/materials/material_library.h>
+#include <mpm/solver/time_stepping.h>
+#include <mpm/transfer/velocity_transfer.h>
+
+#include <string>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * What happens to one material point once the grid's values have been
+   * interpolated to it, the same whatever the particle-grid weights
+   * (ParticleGridWeights): its new velocity and position (grid to
+   * particle), and its strain, stress and volume from a velocity gradient
+   * (the stress update). The weights decide how the interpolation is
+   * done and call these for each point in their own order.
+   */
+  template <int dim>
+  class PointUpdate
+  {
+  public:
+    /// The objects are the Simulator's, read when the points are updated
+    /// (so they may be parsed after construction).
+    PointUpdate(const MaterialLibrary              &materials,
+                const VelocityTransfer<dim>        &transfer,
+                PointRelocation<dim>               &relocation,
+                const TimeSteppingParameters<dim>  &time_stepping);
+
+    /// The step's time step, set before the step's passes.
+    void
+    set_time_step(const double dt)
+    {
+      time_step = dt;
+    }
+
+    /**
+     * Grid to particle for one point (@p point, its properties @p props):
+     * its new velocity from the interpolated nodal acceleration @p a and
+     * end-of-step velocity @p v_new (the FLIP/PIC blend of the
+     * VelocityTransfer), its new position x + dt v_new (located in its
+     * cell, whose 2D map is @p map, if the relocation does that while
+     * moving), the largest squared speed @p v_max2 so far, and the blow-up
+     * check: the first point with a non-finite velocity, position or
+     * stress is remembered (first_bad_point()).
+     */
+    void
+    advance(typename Particles::ParticleHandler<dim>::particle_iterator point,
+            double                                                   *props,
+            const Tensor<1, dim>                                     &a,
+            const Tensor<1, dim>                                     &v_new,
+            const BilinearCellMap                                    *map,
+            double                                                   &v_max2);
+
+    /// One point's strain, stress (its material model) and volume from
+    /// its velocity gradient @p grad_v over the time step.
+    void
+    update_stress(double *props, const Tensor<2, dim> &grad_v) const;
+
+    /// Whether the points of a cell share their volumetric strain rate
+    /// ('Time stepping/Volumetric strain averaging = cell'): then the
+    /// weights call average_volumetric_part() on each cell's gradients
+    /// before update_stress().
+    bool
+    averages_volumetric_strain() const
+    {
+      return time_stepping.average_volumetric_strain;
+    }
+
+    /**
+     * Replace the trace of the velocity gradients @p grad_v of @p n points
+     * (properties @p props) by their volume-weighted mean, keeping the
+     * deviatoric parts (anti-locking).
+     */
+    static void
+    average_volumetric_part(double *const     *props,
+                            Tensor<2, dim>     *grad_v,
+                            const unsigned int n);
+
+    /// Description of the first point found non-finite, empty if none.
+    const std::string &
+    first_bad_point() const
+    {
+      return bad_point;
+    }
+
+  private:
+    const MaterialLibrary       &materials;
+    const VelocityTransfer<dim> &transfer;
+    PointRelocation<dim>        &relocation;
+    const TimeSteppingParameters<dim> &time_stepping;
+    double                       time_step = 0;
+    std::string                  bad_point;
+  };
+} // namespace MPM
+
+#endif

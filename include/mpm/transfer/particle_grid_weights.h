@@ -1,0 +1,352 @@
+#ifndef mpm_transfer_particle_grid_weights_h
+#define mpm_transfer_particle_grid_weights_h
+
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/timer.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/background_grid.h>
+#include <mpm/grid/nodal_vector.h>
+#include <mpm/grid/q1_shape_functions.h>
+#include <mpm/material_points/point_update.h>
+#include <mpm/solver/time_stepping.h>
+#include <mpm/transfer/velocity_transfer.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * What the particle-grid weights work on, all owned by the Simulator:
+   * the points, the mesh, the step's nodal fields, the velocity transfer
+   * scheme and the per-point updates. References, so that the weights see
+   * what the Simulator parses and updates after creating them.
+   */
+  template <int dim>
+  struct TransferContext
+  {
+    Particles::ParticleHandler<dim> &particle_handler;
+    const BackgroundGrid<dim>       &grid;
+    NodalFields                     &nodal;
+    const VelocityTransfer<dim>     &transfer;
+    PointUpdate<dim>                &point_update;
+    /// Gravity (in the mesh's frame once the run is set up).
+    const TimeSteppingParameters<dim> &time_stepping;
+    /// The number of steps done, and the step's time step.
+    const unsigned int              &step;
+    const double                    &time_step;
+    /**
+     * The local indices into the nodal vectors of each cell's vertex
+     * degrees of freedom, as [vertex][component], by active_cell_index()
+     * (every non-artificial cell).
+     */
+    const std::vector<std::array<std::array<unsigned int, dim>,
+                                 GeometryInfo<dim>::vertices_per_cell>>
+                &local_dofs_of_cells;
+    TimerOutput &timer;
+  };
+
+
+  /**
+   * The particle-grid weights ('Transfer/Particle-grid weights'): how a
+   * point's mass, momentum and force reach the nodes and how nodal
+   * values come back to it. The Simulator's step (doc/algorithm.md) calls
+   * these passes in the order of its update scheme; the nodal update
+   * between them is the same for every weight. Each pass reads a point's
+   * data and weights once for every purpose of that pass.
+   *
+   * The velocity transfer scheme (VelocityTransfer: FLIP/PIC blend, XPIC,
+   * APIC) is orthogonal: every implementation supports every scheme,
+   * asking VelocityTransfer for the per-point arithmetic and PointUpdate
+   * for the point's new velocity, position and stress.
+   *
+   * Implementations: LinearWeights (the mesh's own functions at the point)
+   * and CpdiWeights (the functions averaged over each point's deforming
+   * domain). A new weight function is a new class and a line in create().
+   *
+   * Every pass loops over the active cells (the cells holding points, or
+   * with CPDI the cells holding points' corners) and, per cell, over its
+   * entries of shape_functions: only what holds material takes part.
+   */
+  template <int dim>
+  class ParticleGridWeights
+  {
+  public:
+    static constexpr unsigned int n_vertices =
+      GeometryInfo<dim>::vertices_per_cell;
+    /// One value per vertex of a cell.
+    using VertexValues = std::array<Tensor<1, dim>, n_vertices>;
+
+    explicit ParticleGridWeights(const TransferContext<dim> &context);
+
+    virtual ~ParticleGridWeights() = default;
+
+    /// 'Transfer/Particle-grid weights' and every implementation's own
+    /// parameters.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// The weights named in @p prm, with their parameters.
+    static std::unique_ptr<ParticleGridWeights<dim>>
+    create(ParameterHandler &prm, const TransferContext<dim> &context);
+
+    /// Property slots the weights keep per point, from @p first_slot
+    /// (set_first_property_slot()); CPDI's domain.
+    virtual unsigned int
+    n_point_properties() const
+    {
+      return 0;
+    }
+
+    virtual std::vector<std::string>
+    point_property_names() const
+    {
+      return {};
+    }
+
+    /// Where the weights' slots start, and where the transfer scheme's
+    /// slots (APIC's C_p) are.
+    void
+    set_property_slots(const unsigned int transfer_slot,
+                       const unsigned int first_slot)
+    {
+      this->transfer_slot = transfer_slot;
+      own_slot            = first_slot;
+    }
+
+    /**
+     * Everything that depends on the partition of the mesh among ranks;
+     * called after the nodal fields are set up (at the start and after
+     * every repartition).
+     */
+    virtual void
+    setup_partition();
+
+    /**
+     * The step's weights: the active cells, each point's (or corner's)
+     * shape functions grouped by cell, the points' properties and the
+     * nodal entries the step touches. Returns the shortest edge of this
+     * rank's active cells (for the time step).
+     */
+    virtual double
+    prepare() = 0;
+
+    /**
+     * Particle to grid: nodal mass and momentum (with APIC's affine part)
+     * and, if @p with_forces, the nodal forces (gravity and the
+     * divergence of the stress) in the same pass.
+     */
+    virtual void
+    map_mass_and_momentum(const bool with_forces) = 0;
+
+    /// Particle to grid: the nodal forces alone (USF, after its stress
+    /// update).
+    virtual void
+    map_forces() = 0;
+
+    /**
+     * Grid to particle: every point's new velocity and position
+     * (PointUpdate::advance()) from the nodal acceleration and end-of-step
+     * velocity; APIC's new C_p. With @p remap_momentum (MUSL) the points'
+     * new momentum is mapped back into the nodal momentum in the same
+     * pass. Returns this rank's largest squared point speed.
+     */
+    virtual double
+    update_points_from_grid(const bool remap_momentum) = 0;
+
+    /**
+     * Strain, stress and volume of every point from the velocity gradient
+     * of @p velocity; with @p set_affine (MUSL with APIC and linear
+     * weights) that gradient also becomes the point's C_p.
+     */
+    virtual void
+    update_stress(const NodalVector &velocity, const bool set_affine) = 0;
+
+    /**
+     * XPIC's round trip: interpolate the nodal velocity @p velocity to the
+     * points and project their momentum back with the same weights into
+     * @p momentum (zeroed first).
+     */
+    virtual void
+    round_trip(const NodalVector &velocity, NodalVector &momentum) = 0;
+
+    /**
+     * APIC: each point's second moment D_p under this step's weights, in
+     * the order of point_properties() (after prepare()).
+     */
+    virtual void
+    second_moments(std::vector<Tensor<2, dim>> &D) const = 0;
+
+    /// The properties of this rank's points, in the order of the passes
+    /// (valid from prepare() until the points move between cells).
+    const std::vector<double *> &
+    point_properties() const
+    {
+      return points;
+    }
+
+    /// Local element indices of the nodal vectors this step touches.
+    const std::vector<unsigned int> &
+    active_dofs() const
+    {
+      return touched_dofs;
+    }
+
+    /**
+     * Zero the entries of @p v that the points of this step wrote: this
+     * rank's active nodes, the owned entries other ranks added to, the
+     * ghosts (the cost is independent of the size of the empty mesh).
+     */
+    void
+    zero_touched_entries(NodalVector &v) const;
+
+  protected:
+    /**
+     * A cell with material in it this step: its number of entries in
+     * shape_functions (points, or CPDI corners) and the local element
+     * indices of its nodal degrees of freedom, as [vertex][component].
+     */
+    struct ActiveCell
+    {
+      unsigned int                                          n_points;
+      std::array<std::array<unsigned int, dim>, n_vertices> dofs;
+      /// The cell's vertices (BackgroundGrid::cell_vertices()).
+      const std::array<Point<dim>, n_vertices> *vertices = nullptr;
+      /// The cell's bilinear map (2D; nullptr in 3D).
+      const BilinearCellMap *map = nullptr;
+    };
+
+    /// Start collecting this step's active cells and nodal entries.
+    void
+    clear_active_cells();
+
+    /// Append @p cell with @p n entries to active_cells and mark its
+    /// nodal entries as touched.
+    void
+    add_active_cell(
+      const typename Triangulation<dim>::active_cell_iterator &cell,
+      const unsigned int                                       n);
+
+    /// Done adding active cells; returns the shortest edge among them.
+    double
+    finish_active_cells();
+
+    /// The values of @p v at the vertices of @p cell.
+    static VertexValues
+    read_nodes(const ActiveCell &cell, const NodalVector &v)
+    {
+      VertexValues values;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          values[i][c] = v.local_element(cell.dofs[i][c]);
+      return values;
+    }
+
+    /// Add the per-vertex sums @p values of one cell's points to @p v.
+    static void
+    add_to_nodes(const ActiveCell   &cell,
+                 const VertexValues &values,
+                 NodalVector        &v)
+    {
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        for (unsigned int c = 0; c < dim; ++c)
+          v.local_element(cell.dofs[i][c]) += values[i][c];
+    }
+
+    /// Sum what every rank added to the entries of @p v (compress) and
+    /// give every rank the sums at its ghost nodes.
+    static void
+    add_contributions_of_all_ranks(NodalVector &v)
+    {
+      v.compress(VectorOperation::add);
+      v.update_ghost_values();
+    }
+
+    /**
+     * Add one weight set's share of a point to a cell's per-vertex sums
+     * (particle-to-grid): mass N_i m to @p mass, momentum N_i m v_i to
+     * @p momentum, with v_i = v the point's velocity, or with APIC (@p C
+     * not null) its affine field there, v + C dx_i (@p dx the vertices'
+     * offsets from the point's affine centre).
+     */
+    static void
+    add_mass_and_momentum(const std::array<double, n_vertices> &N,
+                          const double                          m,
+                          const Tensor<1, dim>                 &v,
+                          const Tensor<2, dim>                 *C,
+                          const VertexValues                   *dx,
+                          VertexValues                         &mass,
+                          VertexValues                         &momentum)
+    {
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        {
+          const double         mi = N[i] * m;
+          const Tensor<1, dim> vi = C ? v + *C * (*dx)[i] : v;
+          for (unsigned int c = 0; c < dim; ++c)
+            {
+              mass[i][c] += mi;
+              momentum[i][c] += mi * vi[c];
+            }
+        }
+    }
+
+    /**
+     * x_i - x_p for the vertices of @p cell and the point whose shape
+     * functions are @p sf (APIC's affine transfer).
+     */
+    static VertexValues
+    vertex_offsets(const ActiveCell &cell, const Q1ShapeFunctions<dim> &sf)
+    {
+      // x_p = sum_j N_j x_j (the isoparametric map), so x_i - x_p needs no
+      // point location; relative to vertex 0 to avoid cancellation far
+      // from the origin.
+      const auto    &x = *cell.vertices;
+      Tensor<1, dim> xp;
+      for (unsigned int j = 1; j < x.size(); ++j)
+        xp += sf.value[j] * (x[j] - x[0]);
+      VertexValues dx;
+      for (unsigned int i = 0; i < x.size(); ++i)
+        dx[i] = (x[i] - x[0]) - xp;
+      return dx;
+    }
+
+    /// Whether the velocity transfer is APIC (points carry C_p).
+    bool
+    affine() const
+    {
+      return context.transfer.scheme() == TransferScheme::apic;
+    }
+
+    TransferContext<dim> context;
+    /// The first slot of the transfer scheme's point data (APIC's C_p).
+    unsigned int transfer_slot = 0;
+    /// The first slot of the weights' own point data.
+    unsigned int own_slot = 0;
+
+    std::vector<ActiveCell>            active_cells;
+    std::vector<Q1ShapeFunctions<dim>> shape_functions;
+    /**
+     * Each point's properties in the ParticleHandler's pool: the passes
+     * read them without walking the handler's iterators (which look up
+     * the cell's particle list for every point). Valid from prepare()
+     * until points are moved between cells or ranks: no point is added
+     * or removed in between, so the pool does not move.
+     */
+    std::vector<double *> points;
+
+  private:
+    double                     shortest_edge = 0;
+    std::vector<unsigned int>  touched_dofs;
+    std::vector<unsigned char> dof_is_touched;
+  };
+} // namespace MPM
+
+#endif

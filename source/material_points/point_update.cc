@@ -1,0 +1,129 @@
+#include <mpm/material_points/point_update.h>
+#include <mpm/material_points/property_layout.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace MPM
+{
+  template <int dim>
+  PointUpdate<dim>::PointUpdate(const MaterialLibrary             &materials,
+                                const VelocityTransfer<dim>       &transfer,
+                                PointRelocation<dim>              &relocation,
+                                const TimeSteppingParameters<dim> &time_stepping)
+    : materials(materials)
+    , transfer(transfer)
+    , relocation(relocation)
+    , time_stepping(time_stepping)
+  {}
+
+
+  template <int dim>
+  void
+  PointUpdate<dim>::advance(
+    typename Particles::ParticleHandler<dim>::particle_iterator point,
+    double                                                   *props,
+    const Tensor<1, dim>                                     &a,
+    const Tensor<1, dim>                                     &v_new,
+    const BilinearCellMap                                    *map,
+    double                                                   &v_max2)
+  {
+    using Layout      = PropertyLayout<dim>;
+    const double dt   = time_step;
+    const double flip = transfer.flip_fraction();
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        double &v = props[Layout::velocity + c];
+        v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
+      }
+    // As one Tensor expression: built component by component, the new
+    // position was stored as two scalars and read back as one 16-byte
+    // value for set_location(), a store-forwarding stall that was a tenth
+    // of this loop.
+    const Point<dim> x = point->get_location() + dt * v_new;
+    point->set_location(x);
+    // Step 1 of the point location, with each new position at hand.
+    if (relocation.can_locate_while_moving())
+      relocation.locate_in_cell(*map, point, x);
+    const double speed2 =
+      read_vector<dim>(&props[Layout::velocity]).norm_square();
+    v_max2 = std::max(v_max2, speed2);
+    // Blow-up check at the price of one sum: a NaN or infinity in the
+    // velocity, position or stress makes it non-finite.
+    double check = speed2 + x[0] + x[dim - 1];
+    for (unsigned int c = 0; c < 6; ++c)
+      check += props[Layout::stress + c];
+    if (!std::isfinite(check) && bad_point.empty())
+      {
+        std::ostringstream s;
+        s << "material point " << point->get_id() << " at ("
+          << point->get_location() << ") in cell "
+          << point->get_surrounding_cell()->id().to_string()
+          << " has a non-finite velocity, position or stress";
+        bad_point = s.str();
+      }
+  }
+
+
+  template <int dim>
+  void
+  PointUpdate<dim>::update_stress(double               *props,
+                                  const Tensor<2, dim> &grad_v) const
+  {
+    using Layout               = PropertyLayout<dim>;
+    const double       dt      = time_step;
+    const unsigned int n_state = materials.max_n_state_variables();
+    SymmetricTensor<2, 3> strain_increment;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = a; b < dim; ++b)
+        strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
+
+    const Material &material =
+      materials[static_cast<unsigned int>(props[Layout::material_id])];
+    SymmetricTensor<2, 3> stress =
+      read_symmetric_tensor(&props[Layout::stress]);
+    material.model->update_stress(strain_increment,
+                                  stress,
+                                  ArrayView<double>(props + Layout::state,
+                                                    n_state),
+                                  dt);
+    write_symmetric_tensor(stress, &props[Layout::stress]);
+    write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
+                             strain_increment,
+                           &props[Layout::strain]);
+    // Volume follows the determinant of the incremental deformation
+    // gradient I + dt grad v.
+    props[Layout::volume] *=
+      determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
+  }
+
+
+  template <int dim>
+  void
+  PointUpdate<dim>::average_volumetric_part(double *const     *props,
+                                            Tensor<2, dim>     *grad_v,
+                                            const unsigned int n)
+  {
+    using Layout  = PropertyLayout<dim>;
+    double volume = 0, trace = 0;
+    for (unsigned int q = 0; q < n; ++q)
+      {
+        const double V = props[q][Layout::volume];
+        volume += V;
+        trace += V * dealii::trace(grad_v[q]);
+      }
+    if (!(volume > 0))
+      return;
+    const double mean = trace / volume;
+    for (unsigned int q = 0; q < n; ++q)
+      {
+        const double shift = (mean - dealii::trace(grad_v[q])) / dim;
+        for (unsigned int d = 0; d < dim; ++d)
+          grad_v[q][d][d] += shift;
+      }
+  }
+
+
+  template class PointUpdate<2>;
+  template class PointUpdate<3>;
+} // namespace MPM

@@ -1,0 +1,127 @@
+#include <mpm/base/input_error.h>
+#include <mpm/transfer/cpdi_weights.h>
+#include <mpm/transfer/linear_weights.h>
+#include <mpm/transfer/particle_grid_weights.h>
+#include <mpm/transfer/point_domains.h>
+
+#include <limits>
+
+namespace MPM
+{
+  template <int dim>
+  ParticleGridWeights<dim>::ParticleGridWeights(
+    const TransferContext<dim> &context)
+    : context(context)
+  {}
+
+
+  template <int dim>
+  void
+  ParticleGridWeights<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Transfer");
+    prm.declare_entry(
+      "Particle-grid weights",
+      "linear",
+      Patterns::Selection("linear|cpdi"),
+      "The weights by which points and nodes exchange mass, momentum and "
+      "force. 'linear': the mesh's bilinear functions at the point (a "
+      "point acts on the vertices of its cell only: forces jump when it "
+      "crosses a cell edge). 'cpdi': the point's parallelogram domain, "
+      "which deforms with it, averages the mesh functions over it "
+      "(Sadeghirad et al. 2011); smooth across cell edges, about four "
+      "times the transfer cost (doc/convergence.md).");
+    prm.leave_subsection();
+    PointDomains<dim>::declare_parameters(prm);
+  }
+
+
+  template <int dim>
+  std::unique_ptr<ParticleGridWeights<dim>>
+  ParticleGridWeights<dim>::create(ParameterHandler           &prm,
+                                   const TransferContext<dim> &context)
+  {
+    prm.enter_subsection("Transfer");
+    const std::string name = prm.get("Particle-grid weights");
+    prm.leave_subsection();
+    if (name == "cpdi")
+      return std::make_unique<CpdiWeights<dim>>(context, prm);
+    return std::make_unique<LinearWeights<dim>>(context);
+  }
+
+
+  template <int dim>
+  void
+  ParticleGridWeights<dim>::setup_partition()
+  {
+    const NodalVector &v = context.nodal.mass;
+    dof_is_touched.assign(v.locally_owned_size() +
+                            v.get_partitioner()->n_ghost_indices(),
+                          0);
+    touched_dofs.clear();
+  }
+
+
+  template <int dim>
+  void
+  ParticleGridWeights<dim>::zero_touched_entries(NodalVector &v) const
+  {
+    // Only the entries the previous step touched are non-zero: those of
+    // this rank's points (owned or ghost) and the owned entries other
+    // ranks added to in compress() (the partitioner's import indices).
+    for (const unsigned int i : touched_dofs)
+      v.local_element(i) = 0;
+    for (const auto &range : v.get_partitioner()->import_indices())
+      for (unsigned int i = range.first; i < range.second; ++i)
+        v.local_element(i) = 0;
+    v.zero_out_ghost_values();
+  }
+
+
+  template <int dim>
+  void
+  ParticleGridWeights<dim>::clear_active_cells()
+  {
+    active_cells.clear();
+    touched_dofs.clear();
+    shortest_edge = std::numeric_limits<double>::max();
+  }
+
+
+  template <int dim>
+  void
+  ParticleGridWeights<dim>::add_active_cell(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    const unsigned int                                       n)
+  {
+    const BackgroundGrid<dim> &grid = context.grid;
+    shortest_edge = std::min(shortest_edge, grid.cell_size(cell));
+    ActiveCell active{n,
+                      context.local_dofs_of_cells[cell->active_cell_index()],
+                      &grid.cell_vertices(cell)};
+    if constexpr (dim == 2)
+      active.map = &grid.bilinear_map(cell);
+    for (const auto &vertex_dofs : active.dofs)
+      for (const unsigned int local : vertex_dofs)
+        if (!dof_is_touched[local])
+          {
+            dof_is_touched[local] = 1;
+            touched_dofs.push_back(local);
+          }
+    active_cells.push_back(active);
+  }
+
+
+  template <int dim>
+  double
+  ParticleGridWeights<dim>::finish_active_cells()
+  {
+    for (const unsigned int i : touched_dofs)
+      dof_is_touched[i] = 0;
+    return shortest_edge;
+  }
+
+
+  template class ParticleGridWeights<2>;
+  template class ParticleGridWeights<3>;
+} // namespace MPM
