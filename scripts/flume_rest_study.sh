@@ -35,6 +35,10 @@ variants=(
   "volume20.5|--set|Material points/sand/Polygon=$small"
   "volume14.5|--set|Material points/sand/Polygon=$titan"
   "cfl0.25|--set|Time stepping/CFL number=0.25"
+  # The blend's damping per unit time at half the time step: theta^2 =
+  # 0.98 per shipped step (doc/flume.md, "Time step").
+  "cfl0.25_flip0.99|--set|Time stepping/CFL number=0.25|--set|Transfer/FLIP fraction=0.98995"
+  "cfl0.125|--set|Time stepping/CFL number=0.125"
   "usf|--set|Time stepping/Update scheme=USF"
   "pic|--set|Transfer/FLIP fraction=0"
   # mu(I) (doc/materials.md): tau/p <= mu_s = sin(40 deg) = tan(32.74 deg)

@@ -30,7 +30,6 @@ namespace MPM
   {
     using Layout      = PropertyLayout<dim>;
     const double dt   = time_step;
-    const double flip = transfer.flip_fraction();
     for (unsigned int c = 0; c < dim; ++c)
       {
         double &v = props[Layout::velocity + c];

@@ -33,6 +33,17 @@ namespace MPM
                         "theta of 'flip/pic blend': 1 = FLIP (add the "
                         "interpolated nodal acceleration), 0 = PIC (take the "
                         "interpolated nodal velocity).");
+      prm.declare_entry(
+        "FLIP fraction time step",
+        "0",
+        Patterns::Double(0),
+        "The time (s) over which the blend keeps the share 'FLIP fraction' "
+        "of the point velocities' part that the grid does not represent: a "
+        "step of length dt keeps theta^(dt / this), so the blend damps the "
+        "same per unit time at every CFL number and mesh. 0: theta every "
+        "step, whatever its length (then halving the time step doubles the "
+        "damping; doc/transfers.md). The granular scenes ship with their "
+        "CFL 0.5 step on their 5 mm mesh.");
       prm.declare_entry("XPIC order",
                         "2",
                         Patterns::Integer(1, 20),
@@ -63,6 +74,7 @@ namespace MPM
                             s == "apic" ? TransferScheme::apic :
                                           TransferScheme::flip_pic_blend;
       flip                = prm.get_double("FLIP fraction");
+      flip_time_step      = prm.get_double("FLIP fraction time step");
       order               = prm.get_integer("XPIC order");
       limit_affine_energy = prm.get_bool("APIC energy limit");
     }

@@ -36,11 +36,13 @@ namespace MPM
                 PointRelocation<dim>               &relocation,
                 const TimeSteppingParameters<dim>  &time_stepping);
 
-    /// The step's time step, set before the step's passes.
+    /// The step's time step (and with it the FLIP fraction), set before
+    /// the step's passes.
     void
     set_time_step(const double dt)
     {
       time_step = dt;
+      flip      = transfer.flip_fraction(dt);
     }
 
     /**
@@ -99,6 +101,7 @@ namespace MPM
     PointRelocation<dim>        &relocation;
     const TimeSteppingParameters<dim> &time_stepping;
     double                       time_step = 0;
+    double                       flip      = 0;
     std::string                  bad_point;
   };
 } // namespace MPM
