@@ -35,10 +35,14 @@ variants=(
   "volume20.5|--set|Material points/sand/Polygon=$small"
   "volume14.5|--set|Material points/sand/Polygon=$titan"
   "cfl0.25|--set|Time stepping/CFL number=0.25"
-  # The blend's damping per unit time at half the time step: theta^2 =
-  # 0.98 per shipped step (doc/flume.md, "Time step").
-  "cfl0.25_flip0.99|--set|Time stepping/CFL number=0.25|--set|Transfer/FLIP fraction=0.98995"
   "cfl0.125|--set|Time stepping/CFL number=0.125"
+  # The blend per step (the meaning before session 12), at CFL 0.5 and
+  # 0.25, and at CFL 0.25 with theta^2 = 0.98 per step: the damping per
+  # unit time of CFL 0.5 (doc/flume.md, "The blend's damping per unit
+  # time").
+  "per_step|--set|Transfer/FLIP fraction time step=0"
+  "cfl0.25_per_step|--set|Time stepping/CFL number=0.25|--set|Transfer/FLIP fraction time step=0"
+  "cfl0.25_flip0.99|--set|Time stepping/CFL number=0.25|--set|Transfer/FLIP fraction=0.98995|--set|Transfer/FLIP fraction time step=0"
   "usf|--set|Time stepping/Update scheme=USF"
   "pic|--set|Transfer/FLIP fraction=0"
   # mu(I) (doc/materials.md): tau/p <= mu_s = sin(40 deg) = tan(32.74 deg)
