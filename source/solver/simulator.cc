@@ -821,6 +821,7 @@ namespace MPM
     // affine part carries (VelocityTransfer::store_affine()) depends on the
     // point's second moment under the weights of the first step.
     prepare_transfer();
+    std::vector<Tensor<2, dim>> second_moments;
     weights->second_moments(second_moments);
     const auto &points = weights->point_properties();
     for (unsigned int p = 0; p < points.size(); ++p)
@@ -831,7 +832,6 @@ namespace MPM
           second_moments[p],
           affine);
       }
-    second_moments.clear();
   }
 
 

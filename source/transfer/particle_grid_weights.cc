@@ -1,4 +1,3 @@
-#include <mpm/base/input_error.h>
 #include <mpm/transfer/cpdi_weights.h>
 #include <mpm/transfer/linear_weights.h>
 #include <mpm/transfer/particle_grid_weights.h>

@@ -339,8 +339,6 @@ namespace MPM
     PointUpdate<dim> point_update;
     /// The particle-grid weights ('Transfer/Particle-grid weights').
     std::unique_ptr<ParticleGridWeights<dim>> weights;
-    /// The APIC second moments of initialize_affine_matrices().
-    std::vector<Tensor<2, dim>> second_moments;
 
     double       time      = 0;
     double       time_step = 0;
