@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/boundary_conditions/coulomb_friction.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/column_collapse.h>
 #include <mpm/postprocess/energy_balance.h>
@@ -410,9 +411,12 @@ namespace MPM
 
     /**
      * A rigid block sliding down an incline of angle theta under gravity
-     * with Coulomb friction mu at the bed (the paper's "Rigid Block"): while
-     * mu < tan(theta) the block accelerates at a = g (sin theta - mu cos
-     * theta), v = a t, s = a t^2 / 2; otherwise it sticks (a = 0). Reports
+     * on a frictional bed (the paper's "Rigid Block"). The reference is the
+     * closed form of the bed's basal law (BasalLaw::rigid_block_motion()):
+     * with Coulomb friction mu, while mu < tan(theta) the block accelerates
+     * at a = g (sin theta - mu cos theta), v = a t, s = a t^2 / 2; otherwise
+     * it sticks (a = 0); with Voellmy friction it tends to a terminal
+     * speed that depends on the block's thickness. Reports
      * the speed of the block (magnitude of its mean velocity) and the
      * distance travelled by its centre of mass against v and s at output
      * times, with relative errors, and the largest relative speed error
@@ -445,6 +449,13 @@ namespace MPM
                           Patterns::Double(0),
                           "Relative errors are maximised over t >= this (s): "
                           "at t -> 0 the reference speed vanishes.");
+        prm.declare_entry("Block thickness",
+                          "1",
+                          Patterns::Double(0),
+                          "The block's thickness normal to the bed (m): the "
+                          "reference of a rate-dependent basal law (Voellmy's "
+                          "drag acts on the block's base, its weight grows "
+                          "with its thickness).");
       }
 
       void
@@ -453,14 +464,15 @@ namespace MPM
         theta      = prm.get_double("Slope angle") * M_PI / 180;
         bed        = prm.get("Bed boundary");
         error_from = prm.get_double("Error from time");
+        thickness  = prm.get_double("Block thickness");
       }
 
       void
       initialize(const Simulator<dim> &simulator) override
       {
-        const double mu = simulator.get_boundary_conditions()
-                            .friction_coefficient(bed);
-        const double g  = simulator.get_time_stepping().gravity.norm();
+        law = bed_law(simulator);
+        const double mu = law->friction_coefficient();
+        g               = simulator.get_time_stepping().gravity.norm();
         acceleration    = std::max(0., g * (std::sin(theta) - mu * std::cos(theta)));
         // The dip direction: gravity's component along the bed, whose
         // normal is the mean of the frictional nodes' normals (the bed is
@@ -486,6 +498,12 @@ namespace MPM
                       << ", a = g (sin theta - mu cos theta) = "
                       << acceleration << " m/s^2"
                       << (acceleration == 0 ? " (sticks)" : "") << '\n';
+        if (law->rate_dependent())
+          header << "## basal law: " << law->description()
+                 << "; block thickness " << thickness
+                 << " m, terminal speed (m/s): "
+                 << law->rigid_block_motion(1e6, g, theta, thickness).first
+                 << '\n';
         report_header = header.str();
       }
 
@@ -496,8 +514,11 @@ namespace MPM
         const double t        = s.time - t0;
         const double v        = s.mean_velocity.norm();
         const double d        = (s.centre_of_mass - x0).norm();
-        const double v_exact  = acceleration * t;
-        const double d_exact  = 0.5 * acceleration * t * t;
+        // A resumed run does not call initialize().
+        if (law == nullptr)
+          law = bed_law(simulator);
+        const auto [v_exact, d_exact] =
+          law->rigid_block_motion(t, g, theta, thickness);
         const double v_error  = v_exact > 0 ? (v - v_exact) / v_exact : v;
         const double d_error  = d_exact > 0 ? (d - d_exact) / d_exact : d;
         if (t >= error_from * (1 - 1e-12))
@@ -554,7 +575,7 @@ namespace MPM
         // from a constant velocity offset picked up in the first steps,
         // whose relative error decays like 1/t.
         const double det = fit[0] * fit[2] - fit[1] * fit[1];
-        if (fit[0] > 2 && det > 0)
+        if (fit[0] > 2 && det > 0 && !law->rate_dependent())
           {
             const double slope  = (fit[0] * fit[4] - fit[1] * fit[3]) / det;
             const double offset = (fit[3] - slope * fit[1]) / fit[0];
@@ -588,12 +609,26 @@ namespace MPM
       serialize(Archive &ar, const unsigned int)
       {
         ar & acceleration & t0 & x0 & max_v_error & max_d_error & fit & table &
-          report_header & dip & max_angle;
+          report_header & dip & max_angle & g;
       }
 
     private:
+      /// The bed's basal law; a bed that is not frictional slides without
+      /// friction.
+      const BasalLaw<dim> *
+      bed_law(const Simulator<dim> &simulator) const
+      {
+        const BasalLaw<dim> *bed_law =
+          simulator.get_boundary_conditions().basal_law(bed);
+        return bed_law != nullptr ? bed_law : &frictionless;
+      }
+
+      const CoulombFriction<dim> frictionless{0.};
       double             theta = 0, error_from = 0.1, acceleration = 0, t0 = 0;
+      double             thickness = 1, g = 0;
       std::string        bed;
+      /// The bed's basal law (the Simulator's, alive for the whole run).
+      const BasalLaw<dim> *law = nullptr;
       Point<dim>         x0;
       double             max_v_error = 0, max_d_error = 0;
       /// Unit vector down the bed's steepest slope, and the largest angle

@@ -192,6 +192,7 @@ namespace MPM
     output_writer.initialize(mpi_communicator);
     grid.create();
     boundary_conditions.check_boundary_ids(grid);
+    boundary_conditions.set_gravity(time_stepping.gravity);
 
     setup_nodal_fields();
 

@@ -20,6 +20,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/boundary_conditions/boundary_conditions.h>
+#include <mpm/boundary_conditions/coulomb_friction.h>
+#include <mpm/boundary_conditions/wall_friction.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
@@ -129,7 +131,8 @@ namespace
     const double       dt = 0.01;
     const Tensor<1, 2> n({0., -1.});
     const Tensor<1, 2> result =
-      MPM::BoundaryConditions<2>::frictional_acceleration(v, a, n, mu, dt);
+      MPM::WallFriction::frictional_acceleration<2>(
+        v, a, n, MPM::CoulombFriction<2>(mu), {}, dt);
     std::cout << "friction, " << what << ": v = (" << v << "), a = (" << a
               << "), mu = " << mu << ", dt = " << dt << "\n  a' = ("
               << flush_to_zero(result[0], 1e-13) << ", "
@@ -146,11 +149,12 @@ namespace
                 const Tensor<1, 3>   &side_normal = Tensor<1, 3>({0., 1., 0.}))
   {
     const double                      dt = 0.01;
+    const MPM::CoulombFriction<3>     bed_law(0.5);
     const std::array<Tensor<1, 3>, 2> n{{Tensor<1, 3>({0., 0., -1.}),
                                          side_normal}};
     const Tensor<1, 3> result =
-      MPM::BoundaryConditions<3>::edge_frictional_acceleration(
-        v, a, n, {{0.5, 0.}}, dt);
+      MPM::WallFriction::edge_frictional_acceleration<3>(
+        v, a, n, {{&bed_law, nullptr}}, {}, dt);
     std::cout << "edge friction, " << what << ": v = (" << v << "), a = ("
               << a << "), mu = 0.5 (bed), 0 (side wall (" << side_normal
               << ")), dt = " << dt << "\n  a' = ("

@@ -6,6 +6,8 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <mpm/boundary_conditions/boundary_spec.h>
+#include <mpm/boundary_conditions/wall_constraints.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
@@ -24,21 +26,29 @@ namespace MPM
    * correct for friction, transform back.
    *
    * The parameter file lists named boundaries; each covers one or more
-   * boundary ids of the mesh and has a type:
+   * boundary ids of the mesh and has a type (BoundaryType):
    *  - free:     no constraint;
    *  - fixed:    zero velocity (no-slip);
    *  - slip:     zero normal velocity, free tangential velocity;
    *  - friction: no penetration (unilateral contact: the normal velocity is
    *              removed only while the node moves into the wall, a node
-   *              moving away from it is free) and Coulomb friction with
-   *              coefficient mu on the tangential velocity while the node is
-   *              pressed into the wall. Unilateral, because a bilateral
-   *              constraint would also hold nodes that the material pulls
-   *              off the wall; friction, acting only where the wall pushes,
-   *              would then see more than the body's weight (measured:
-   *              25 % too slow a block at mu = 0.3, see doc/validation.md);
+   *              moving away from it is free) and a basal law (BasalLaw:
+   *              Coulomb, Voellmy, ...) on the tangential velocity while
+   *              the node is pressed into the wall. Unilateral, because a
+   *              bilateral constraint would also hold nodes that the
+   *              material pulls off the wall; friction, acting only where
+   *              the wall pushes, would then see more than the body's
+   *              weight (measured: 25 % too slow a block at mu = 0.3, see
+   *              doc/validation.md);
    *  - velocity: prescribed velocity, given by its normal and tangential
    *              components in the local frame (2D).
+   *
+   * The pieces, one file each: the node frames (compute_node_frames(): the
+   * geometry of the walls and the corner rule), the constraints
+   * (make_wall_constraints(): AffineConstraints rows n . v = b) and their
+   * orthogonal projections in each node's frame (make_projections()), the
+   * node-level friction (WallFriction) with the basal laws as plugins, and
+   * here the parameters, the contact state and the loops over the nodes.
    *
    * The frame of a node: its outward normal is the area-weighted average of
    * the outward normals of the node's boundary faces with the boundary's
@@ -51,15 +61,12 @@ namespace MPM
    * such a corner node is fixed; in 3D so is a node with three. A 3D node
    * with two normals (an edge where, e.g., a frictional bed meets a slip
    * side wall) slides along the edge: its contact is bilateral, and if one
-   * of its walls is frictional, Coulomb friction acts on the velocity along
-   * the edge with that wall's normal reaction (before session 10 edge
-   * nodes had no friction: a 3D channel two cells wide then lost two
-   * thirds of its bed friction). Unilateral contact is for nodes with one
-   * (possibly merged) normal.
+   * of its walls is frictional, its basal law acts on the velocity along
+   * the edge with that wall's normal reaction (without it a 3D channel two
+   * cells wide lost two thirds of its bed friction). Unilateral contact is
+   * for nodes with one (possibly merged) normal.
    *
-   * The normal constraints are held in an AffineConstraints object (rows
-   * n . v = b, as VectorTools::compute_no_normal_flux_constraints makes
-   * them). They are applied as an orthogonal projection in each node's
+   * The constraints are applied as an orthogonal projection in each node's
    * frame, v <- P v + q with P = I - N^T (N N^T)^{-1} N: the normal
    * component is removed and the tangential one kept exactly. This is what
    * condensing the lumped-mass system does. AffineConstraints::distribute()
@@ -70,36 +77,7 @@ namespace MPM
   class BoundaryConditions
   {
   public:
-    /**
-     * A node that carries a constraint, in the numbering of the local
-     * elements of a ghosted vector.
-     */
-    struct ConstrainedNode
-    {
-      /// Local element index of each velocity component.
-      std::array<unsigned int, dim> local_dofs;
-      /// Orthogonal projector onto the admissible velocities.
-      Tensor<2, dim> projector;
-      /// Particular solution of the inhomogeneous constraints.
-      Tensor<1, dim> offset;
-      /// Coulomb friction and unilateral contact at this node (a node with
-      /// one wall normal, of a frictional boundary)?
-      bool frictional = false;
-      /// Unit outward normal of the node's frame.
-      Tensor<1, dim> normal;
-      /// Friction coefficient.
-      double friction_coefficient = 0;
-      /// A 3D edge node (two wall normals, one free direction) of which at
-      /// least one wall is frictional: the two normals (unit) and the
-      /// friction coefficient of each (0 for a slip wall). Friction acts on
-      /// the velocity along the edge with the frictional walls' reactions
-      /// (edge_frictional_acceleration()); the contact is bilateral.
-      bool                          edge_friction = false;
-      std::array<Tensor<1, dim>, 2> edge_normals;
-      std::array<double, 2>         edge_mu{};
-      /// The mesh vertex of the node.
-      Point<dim> location;
-    };
+    using ConstrainedNode = MPM::ConstrainedNode<dim>;
 
     static void
     declare_name_list(ParameterHandler &prm);
@@ -121,6 +99,16 @@ namespace MPM
      */
     void
     setup(const BackgroundGrid<dim> &grid, const NodalVector &layout);
+
+    /**
+     * The gravity of the scene, whose magnitude basal laws may refer to
+     * (Voellmy's rho g v^2 / xi); before setup().
+     */
+    void
+    set_gravity(const Tensor<1, dim> &gravity)
+    {
+      gravity_magnitude = gravity.norm();
+    }
 
     /**
      * Which frictional (unilateral) nodes a projection holds on their wall.
@@ -204,53 +192,16 @@ namespace MPM
     }
 
     /**
-     * Coulomb friction on the nodal acceleration, in each frictional node's
-     * frame, given the velocity at the start of the step (already
-     * projected) and the step dt. Nodes with zero mass are skipped.
+     * The basal laws of the frictional walls on the nodal acceleration, in
+     * each frictional node's frame (WallFriction), given the velocity at
+     * the start of the step (already projected) and the step dt. Nodes
+     * with zero mass are skipped.
      */
     void
     apply_friction(const NodalVector &mass,
                    const NodalVector &velocity,
                    NodalVector       &acceleration,
                    const double       dt);
-
-    /**
-     * Friction in the local frame of one node: returns the corrected
-     * acceleration for velocity @p v and acceleration @p a (global frame),
-     * outward unit normal @p n and coefficient @p mu. Coulomb's law by
-     * backward Euler: with the normal reaction per unit mass r = v.n/dt +
-     * a.n (friction only if r > 0) and the trial tangential velocity
-     * v_t* = v_t + dt a_t, the node sticks (v_t' = 0) if |v_t*| <= mu r dt,
-     * else v_t' = v_t* (1 - mu r dt / |v_t*|). This is the static rule at
-     * rest (stick while |a_t| <= mu r), the kinetic rule when sliding
-     * (a_t reduced by mu r, stopping rather than reversing), and friction
-     * never reverses the motion. The normal component is left for the
-     * projection. Exposed for unit tests.
-     */
-    static Tensor<1, dim>
-    frictional_acceleration(const Tensor<1, dim> &v,
-                            const Tensor<1, dim> &a,
-                            const Tensor<1, dim> &n,
-                            const double          mu,
-                            const double          dt,
-                            bool *const           sticks = nullptr);
-
-    /**
-     * Friction at an edge node: the trial velocity w = v + dt a is
-     * brought onto the edge by wall impulses lambda_j n_j (the Gram system
-     * of the two outward normals); wall j pushes if lambda_j < 0, and the
-     * friction capacity is sum_j mu_j max(0, -lambda_j). Coulomb's law by
-     * backward Euler on w's component along the edge, as at a one-normal
-     * node; the normal parts are left for the projection. Exposed for unit
-     * tests.
-     */
-    static Tensor<1, dim>
-    edge_frictional_acceleration(const Tensor<1, dim>                &v,
-                                 const Tensor<1, dim>                &a,
-                                 const std::array<Tensor<1, dim>, 2> &n,
-                                 const std::array<double, 2>         &mu,
-                                 const double                         dt,
-                                 bool *const sticks = nullptr);
 
     const AffineConstraints<double> &
     constraints() const
@@ -278,6 +229,13 @@ namespace MPM
     friction_coefficient(const std::string &name) const;
 
     /**
+     * The basal law of the boundary called @p name (nullptr unless it is
+     * of type friction); InputError if there is no such boundary.
+     */
+    const BasalLaw<dim> *
+    basal_law(const std::string &name) const;
+
+    /**
      * Throw an InputError if a boundary id named in the parameter file does
      * not occur in the mesh.
      */
@@ -293,27 +251,8 @@ namespace MPM
     does_work() const;
 
   private:
-    enum class Type
-    {
-      free,
-      fixed,
-      slip,
-      friction,
-      velocity
-    };
-
-    struct Spec
-    {
-      std::string                     name;
-      std::vector<types::boundary_id> ids;
-      Type                            type = Type::free;
-      double                          friction_coefficient = 0;
-      bool                            normal_from_mesh     = true;
-      Tensor<1, dim>                  given_normal;
-      Tensor<1, dim>                  local_velocity;
-    };
-
-    std::vector<Spec>            specs;
+    std::vector<BoundarySpec<dim>> specs;
+    double                         gravity_magnitude = 0;
     AffineConstraints<double>    normal_constraints;
     std::vector<ConstrainedNode> nodes;
     /// What the last nodal update did to each frictional node.

@@ -1,0 +1,53 @@
+#ifndef mpm_boundary_conditions_boundary_spec_h
+#define mpm_boundary_conditions_boundary_spec_h
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
+
+#include <mpm/boundary_conditions/basal_law.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /// The kinds of boundary ('Boundary conditions/NAME/Type').
+  enum class BoundaryType
+  {
+    /// No constraint.
+    free,
+    /// Zero velocity (no-slip).
+    fixed,
+    /// Zero normal velocity, free tangential velocity.
+    slip,
+    /// Unilateral contact with a basal law on the tangential velocity.
+    friction,
+    /// Prescribed (normal, tangential) velocity in the node frame (2D).
+    velocity
+  };
+
+
+  /**
+   * One named boundary of the parameter file: the mesh boundary ids it
+   * covers, its type, its normal and, for Type = friction, its basal law.
+   */
+  template <int dim>
+  struct BoundarySpec
+  {
+    std::string                     name;
+    std::vector<types::boundary_id> ids;
+    BoundaryType                    type = BoundaryType::free;
+    /// The basal law (Type = friction only, else nullptr).
+    std::shared_ptr<const BasalLaw<dim>> law;
+    bool                            normal_from_mesh = true;
+    /// Unit outward normal for 'Normal = given' (the scene's frame).
+    Tensor<1, dim>                  given_normal;
+    /// (normal, tangential) velocity for Type = velocity.
+    Tensor<1, dim>                  local_velocity;
+  };
+} // namespace MPM
+
+#endif
