@@ -494,6 +494,79 @@ namespace MPM
 
 
   template <int dim>
+  std::vector<typename PointGenerator<dim>::RegionBeyondMesh>
+  PointGenerator<dim>::regions_beyond_mesh(
+    const BackgroundGrid<dim>            &grid,
+    const std::set<types::boundary_id> &constrained_ids) const
+  {
+    const MPI_Comm comm = grid.triangulation.get_communicator();
+    FEFaceValues<dim> face_values(grid.mapping,
+                                  grid.fe,
+                                  QMidpoint<dim - 1>(),
+                                  update_quadrature_points |
+                                    update_normal_vectors | update_JxW_values);
+    std::vector<RegionBeyondMesh> beyond;
+    for (const auto &region : regions)
+      {
+        if (region.type != "box" && region.type != "polygon" &&
+            region.type != "function")
+          continue;
+        double crossed = 0;
+        for (const auto &cell : grid.triangulation.active_cell_iterators())
+          if (cell->is_locally_owned() && cell->at_boundary())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  constrained_ids.count(cell->face(f)->boundary_id()) == 0)
+                {
+                  face_values.reinit(cell, f);
+                  // Just outside the face: a millionth of the cell's size.
+                  const Point<dim> x =
+                    face_values.quadrature_point(0) +
+                    1e-6 * cell->diameter() * face_values.normal_vector(0);
+                  if (region.contains(grid.to_scene_frame(x),
+                                      grid.height_above_ground(x)))
+                    crossed += face_values.JxW(0);
+                }
+        crossed = Utilities::MPI::sum(crossed, comm);
+        if (crossed == 0)
+          continue;
+        RegionBeyondMesh r;
+        r.name         = region.name;
+        r.crossed_area = crossed;
+        double region_volume = -1;
+        if (region.type == "box")
+          {
+            region_volume = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              region_volume *= region.box_upper[d] - region.box_lower[d];
+          }
+        else if (region.type == "polygon")
+          {
+            // The shoelace formula (2D; the polygon is simple).
+            double twice_area = 0;
+            for (unsigned int i = 0; i < region.polygon.size(); ++i)
+              {
+                const auto &a = region.polygon[i];
+                const auto &b = region.polygon[(i + 1) % region.polygon.size()];
+                twice_area += a[0] * b[1] - b[0] * a[1];
+              }
+            region_volume = 0.5 * std::abs(twice_area);
+          }
+        if (region_volume >= 0)
+          {
+            double created = 0;
+            for (const auto &p : points_of_region(region, grid))
+              created += p.volume;
+            r.volume_lost =
+              std::max(0., region_volume - Utilities::MPI::sum(created, comm));
+          }
+        beyond.push_back(r);
+      }
+    return beyond;
+  }
+
+
+  template <int dim>
   void
   PointGenerator<dim>::generate(
     const BackgroundGrid<dim>       &grid,

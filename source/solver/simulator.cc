@@ -239,6 +239,25 @@ namespace MPM
                                transfer.scheme() == TransferScheme::apic ?
                                  transfer_slot :
                                  numbers::invalid_unsigned_int);
+    // Checked on a resumed run too: its report is that of an
+    // uninterrupted run.
+    for (const auto &region : point_generator.regions_beyond_mesh(
+             grid, boundary_conditions.constrained_boundary_ids()))
+        {
+          std::ostringstream warning;
+          warning << std::setprecision(6);
+          warning << "the region 'Material points/" << region.name
+                  << "' reaches beyond the mesh through "
+                  << region.crossed_area << (dim == 2 ? " m" : " m^2")
+                  << " of a boundary that no boundary condition holds: the "
+                     "material it describes beyond the mesh is not created";
+          if (region.volume_lost >= 0)
+            warning << " (" << region.volume_lost
+                    << (dim == 2 ? " m^2" : " m^3") << " of the region)";
+          warning << ". Enlarge the mesh or the region's limits.";
+          warnings.push_back(warning.str());
+          pcout << "Warning: " << warning.str() << '\n';
+        }
     // Gravity is given in the scene's frame, like everything else.
     time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
     // p4est's first partition balances cells; the work is where the points
@@ -1055,6 +1074,8 @@ namespace MPM
     std::ostringstream report;
     report << "# dealii-mpm report: " << postprocessor_names.size()
            << " postprocessor(s)\n";
+    for (const auto &warning : warnings)
+      report << "# warning: " << warning << '\n';
     for (auto &p : postprocessors)
       p->write_report(*this, report);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

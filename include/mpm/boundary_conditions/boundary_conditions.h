@@ -12,6 +12,7 @@
 #include <mpm/grid/nodal_vector.h>
 
 #include <array>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -241,6 +242,20 @@ namespace MPM
      */
     void
     check_boundary_ids(const BackgroundGrid<dim> &grid) const;
+
+    /**
+     * The mesh boundary ids that a boundary condition other than 'free'
+     * covers: material may rest against them.
+     */
+    std::set<types::boundary_id>
+    constrained_boundary_ids() const
+    {
+      std::set<types::boundary_id> ids;
+      for (const auto &spec : specs)
+        if (spec.type != BoundaryType::free)
+          ids.insert(spec.ids.begin(), spec.ids.end());
+      return ids;
+    }
 
     /**
      * Whether a boundary can do work on the material (a prescribed,

@@ -12,6 +12,7 @@
 #include <mpm/materials/material_library.h>
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,35 @@ namespace MPM
              Particles::ParticleHandler<dim> &particle_handler,
              const unsigned int velocity_gradient_slot =
                numbers::invalid_unsigned_int) const;
+
+    /**
+     * A region that reaches beyond the mesh through an open boundary: its
+     * name, the area of open boundary it crosses and, for box and polygon
+     * regions, the volume the region has beyond the mesh (region volume
+     * minus the volume of its points; -1 where the region's volume is not
+     * known in closed form).
+     */
+    struct RegionBeyondMesh
+    {
+      std::string name;
+      double      crossed_area = 0;
+      double      volume_lost  = -1;
+    };
+
+    /**
+     * The regions (box, polygon, function) that continue beyond the mesh
+     * through a boundary whose id is not in @p constrained_ids, i.e. that
+     * no boundary condition holds material against: there the material
+     * the region describes beyond the mesh is simply not created (a
+     * landslide given 2 m deep over a meshed layer 1 m thick ran with half
+     * of its mass). A region that continues through a constrained
+     * boundary (a bed, a symmetry plane) is cut there on purpose.
+     * Checked at the centre of each open boundary face, just outside it.
+     * Collective.
+     */
+    std::vector<RegionBeyondMesh>
+    regions_beyond_mesh(const BackgroundGrid<dim>             &grid,
+                        const std::set<types::boundary_id> &constrained_ids) const;
 
   private:
     struct Region

@@ -357,6 +357,10 @@ namespace MPM
     double                lost_energy   = 0;
     std::vector<std::string> lost_point_descriptions;
 
+    /// Warnings about the input found in the set-up, repeated in the
+    /// report.
+    std::vector<std::string> warnings;
+
     std::ofstream      statistics_file;
     /// Bytes of the statistics file at the checkpoint a run resumed from.
     std::uint64_t      statistics_length = 0;
