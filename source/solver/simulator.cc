@@ -127,6 +127,7 @@ namespace MPM
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
+    transfer.scheme().add_nodal_fields(nodal);
     weights = ParticleGridWeights<dim>::create(
       prm,
       TransferContext<dim>{particle_handler,
@@ -142,7 +143,7 @@ namespace MPM
     prm.enter_subsection("Transfer");
     const bool linear_weights = prm.get("Particle-grid weights") == "linear";
     prm.leave_subsection();
-    if (transfer.scheme() == TransferScheme::apic &&
+    if (transfer.apic() != nullptr &&
         time_stepping.scheme != UpdateScheme::musl && linear_weights)
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
                "scheme' USF or USL fits each point's affine matrix to the "
@@ -176,7 +177,7 @@ namespace MPM
       names.push_back(materials.size() == 1 && i < model_names.size() ?
                         model_names[i] :
                         "state_" + std::to_string(i));
-    for (const auto &name : transfer.point_property_names())
+    for (const auto &name : transfer.scheme().point_property_names())
       names.push_back(name);
     for (const auto &name : weights->point_property_names())
       names.push_back(name);
@@ -201,7 +202,7 @@ namespace MPM
     transfer_slot =
       PropertyLayout<dim>::state + materials.max_n_state_variables();
     const unsigned int weights_slot =
-      transfer_slot + transfer.n_point_properties();
+      transfer_slot + transfer.scheme().n_point_properties();
     weights->set_property_slots(transfer_slot, weights_slot);
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
@@ -236,7 +237,7 @@ namespace MPM
                                materials,
                                time_stepping.gravity,
                                particle_handler,
-                               transfer.scheme() == TransferScheme::apic ?
+                               transfer.apic() != nullptr ?
                                  transfer_slot :
                                  numbers::invalid_unsigned_int);
     // Checked on a resumed run too: its report is that of an
@@ -266,8 +267,12 @@ namespace MPM
         Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       repartition();
 
-    if (!checkpointing.resume() && transfer.scheme() == TransferScheme::apic)
-      initialize_affine_matrices();
+    if (!checkpointing.resume() && transfer.scheme().initializes_points())
+      {
+        // Under the first step's weights.
+        prepare_transfer();
+        transfer.scheme().initialize_points(*weights, transfer_slot);
+      }
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
@@ -322,17 +327,7 @@ namespace MPM
   {
     const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
       grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
-    for (NodalVector *v : {&nodal.mass,
-                           &nodal.momentum,
-                           &nodal.force,
-                           &nodal.velocity,
-                           &nodal.velocity_new,
-                           &nodal.acceleration,
-                           &filtered_velocity,
-                           &round_trip_velocity,
-                           &round_trip_momentum})
-      v->reinit(partitioner);
-    mark_locally_computed_fields();
+    nodal.reinit(partitioner);
     // The nodal-vector entries of every locally owned cell's vertices,
     // looked up once: the DoF handler and the partitioner's global-to-local
     // map are not touched by the steps.
@@ -536,34 +531,7 @@ namespace MPM
   void
   Simulator<dim>::zero_nodal_fields()
   {
-    for (NodalVector *v : {&nodal.mass,
-                           &nodal.momentum,
-                           &nodal.force,
-                           &nodal.velocity,
-                           &nodal.velocity_new,
-                           &nodal.acceleration})
-      weights->zero_touched_entries(*v);
-    if (transfer.scheme() == TransferScheme::xpic)
-      for (NodalVector *v :
-           {&filtered_velocity, &round_trip_velocity, &round_trip_momentum})
-        weights->zero_touched_entries(*v);
-    mark_locally_computed_fields();
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::mark_locally_computed_fields()
-  {
-    // Velocity and acceleration are computed by every rank for all nodes
-    // its points touch, ghosts included, from the summed mass, momentum and
-    // force: their ghost entries are valid without an exchange.
-    for (const NodalVector *v : {&nodal.velocity,
-                                 &nodal.velocity_new,
-                                 &nodal.acceleration,
-                                 &filtered_velocity,
-                                 &round_trip_velocity})
-      v->set_ghost_state(true);
+    nodal.zero([this](NodalVector &v) { weights->zero_touched_entries(v); });
   }
 
 
@@ -763,8 +731,13 @@ namespace MPM
         weights->update_stress(nodal.velocity, false);
         weights->map_forces();
       }
-    if (transfer.scheme() == TransferScheme::xpic && transfer.xpic_order() > 1)
-      filter_brought_velocity();
+    if (transfer.scheme().filters_brought_velocity())
+      {
+        TimerOutput::Scope t(timer, "transfer filter");
+        transfer.scheme().filter_brought_velocity(*weights,
+                                                  boundary_conditions,
+                                                  nodal);
+      }
     update_nodal_kinematics();
     // Grid to particle (MUSL: and the new momentum back to the nodes).
     set_max_point_speed(
@@ -775,7 +748,7 @@ namespace MPM
       {
         compute_nodal_velocity(nodal.velocity_new);
         weights->update_stress(nodal.velocity_new,
-                               transfer.scheme() == TransferScheme::apic);
+                               transfer.apic() != nullptr);
       }
     time += time_step;
     ++step;
@@ -789,69 +762,6 @@ namespace MPM
   {
     active_cell_size =
       Utilities::MPI::min(weights->prepare(), mpi_communicator);
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::filter_brought_velocity()
-  {
-    TimerOutput::Scope t(timer, "transfer filter");
-    const auto        &coefficients = transfer.filter_coefficients();
-    const auto        &active_dofs  = weights->active_dofs();
-    // u_1 = the constrained brought velocity (compute_nodal_velocity()).
-    for (const unsigned int i : active_dofs)
-      {
-        const double u                       = nodal.velocity.local_element(i);
-        round_trip_velocity.local_element(i) = u;
-        filtered_velocity.local_element(i)   = coefficients[0] * u;
-      }
-    for (unsigned int k = 1; k < coefficients.size(); ++k)
-      {
-        // u_{k+1} = P S S+ u_k: interpolate to the points, project back
-        // with their masses, constrain.
-        weights->round_trip(round_trip_velocity, round_trip_momentum);
-        for (const unsigned int i : active_dofs)
-          {
-            const double m = nodal.mass.local_element(i);
-            round_trip_velocity.local_element(i) =
-              m > 0 ? round_trip_momentum.local_element(i) / m : 0.;
-          }
-        // The same projection as u_1's (compute_nodal_velocity()).
-        boundary_conditions.project_velocity(
-          round_trip_velocity,
-          BoundaryConditions<dim>::Contact::as_last_update);
-        for (const unsigned int i : active_dofs)
-          filtered_velocity.local_element(i) +=
-            coefficients[k] * round_trip_velocity.local_element(i);
-      }
-    // The nodal update starts from the brought velocity p / m: it is now
-    // the filtered one, so friction and the walls act on it.
-    for (const unsigned int i : active_dofs)
-      nodal.momentum.local_element(i) =
-        nodal.mass.local_element(i) * filtered_velocity.local_element(i);
-  }
-
-
-  template <int dim>
-  void
-  Simulator<dim>::initialize_affine_matrices()
-  {
-    // The generator wrote the initial velocity gradient into C_p; what its
-    // affine part carries (VelocityTransfer::store_affine()) depends on the
-    // point's second moment under the weights of the first step.
-    prepare_transfer();
-    std::vector<Tensor<2, dim>> second_moments;
-    weights->second_moments(second_moments);
-    const auto &points = weights->point_properties();
-    for (unsigned int p = 0; p < points.size(); ++p)
-      {
-        double *affine = points[p] + transfer_slot;
-        VelocityTransfer<dim>::store_affine(
-          VelocityTransfer<dim>::stored_affine(affine),
-          second_moments[p],
-          affine);
-      }
   }
 
 
@@ -931,7 +841,7 @@ namespace MPM
         c = cross_product_3d(a, b);
       return c;
     };
-    const bool   affine = transfer.scheme() == TransferScheme::apic;
+    const bool   affine = transfer.apic() != nullptr;
     Tensor<1, 3> L;
     double       scale = 0;
     for (const auto &point : particle_handler)
@@ -946,7 +856,7 @@ namespace MPM
         // translation, whose spin is zero.
         scale += m * r.norm() * (v + mean_velocity).norm();
         if (affine)
-          L += m * VelocityTransfer<dim>::affine_angular_momentum(
+          L += m * Apic<dim>::affine_angular_momentum(
                      &props[transfer_slot]);
       }
     return {Utilities::MPI::sum(L, mpi_communicator),

@@ -438,12 +438,12 @@ namespace MPM
       {
         // APIC: each point's affine matrix at its weights of this step,
         // which needs its second moment D_p summed over its corners first
-        // (VelocityTransfer::affine_matrix()).
+        // (Apic::affine_matrix()).
         const unsigned int n_points = this->points.size();
         second_moments(point_sum_D);
         point_affine.resize(n_points);
         for (unsigned int p = 0; p < n_points; ++p)
-          point_affine[p] = this->context.transfer.affine_matrix(
+          point_affine[p] = this->context.transfer.apic()->affine_matrix(
             this->points[p] + this->transfer_slot, point_sum_D[p]);
       }
     for (const auto &cell : this->active_cells)
@@ -533,7 +533,7 @@ namespace MPM
     point_sum_a.assign(n_points, Tensor<1, dim>());
     point_sum_b.assign(n_points, Tensor<1, dim>());
     // APIC: B_p, D_p and the velocity gradient of the end-of-step grid
-    // velocity, for C_p = B_p D_p^{-1} (VelocityTransfer::fit_affine()).
+    // velocity, for C_p = B_p D_p^{-1} (Apic::fit_affine()).
     const bool affine = this->affine();
     if (affine)
       {
@@ -591,7 +591,7 @@ namespace MPM
                       v_max2);
         if (affine)
           point_affine[p] =
-            VelocityTransfer<dim>::fit_affine(point_sum_B[p],
+            Apic<dim>::fit_affine(point_sum_B[p],
                                               point_sum_D[p],
                                               point_sum_gradient[p],
                                               point_node_scale[p],
@@ -747,7 +747,7 @@ namespace MPM
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
         D[corner_point[k]] +=
           corner_alpha[k] *
-          VelocityTransfer<dim>::second_moment(this->shape_functions[k].value,
+          Apic<dim>::second_moment(this->shape_functions[k].value,
                                                corner_node_offsets(cell, k));
   }
 

@@ -1,6 +1,6 @@
 // The particle-grid passes with the mesh's own linear weights. The order
 // of the passes is the Simulator's (Simulator::do_time_step()); the
-// per-point arithmetic of the transfer schemes is in VelocityTransfer, the
+// per-point arithmetic of the transfer schemes is in TransferScheme (APIC's in Apic), the
 // point's own update in PointUpdate.
 
 #include <deal.II/base/tensor.h>
@@ -86,7 +86,7 @@ namespace MPM
                 // there, v_p + C_p (x_i - x_p).
                 const auto dx = this->vertex_offsets(cell, sf);
                 const auto C =
-                  transfer.affine_matrix(sf, dx, props + this->transfer_slot);
+                  transfer.apic()->affine_matrix(sf, dx, props + this->transfer_slot);
                 this->add_mass_and_momentum(
                   sf.value, m, v, &C, &dx, mass, momentum);
               }
@@ -190,7 +190,7 @@ namespace MPM
             // grid velocity (doc/transfers.md: exact, but unstable at
             // CFL >= 0.1).
             if (affine && !remap_momentum)
-              VelocityTransfer<dim>::update_affine(
+              Apic<dim>::update_affine(
                 this->shape_functions[k],
                 this->vertex_offsets(cell, this->shape_functions[k]),
                 v_node,
@@ -254,11 +254,11 @@ namespace MPM
             double *props = this->points[k];
             updater.update_stress(props, grad_v);
             // MUSL with APIC: the affine matrix is this velocity gradient
-            // (see VelocityTransfer::store_affine()).
+            // (see Apic::store_affine()).
             if (set_affine)
-              VelocityTransfer<dim>::store_affine(
+              Apic<dim>::store_affine(
                 grad_v,
-                VelocityTransfer<dim>::second_moment(
+                Apic<dim>::second_moment(
                   sf.value, this->vertex_offsets(cell, sf)),
                 props + this->transfer_slot);
           }
@@ -302,7 +302,7 @@ namespace MPM
     unsigned int k = 0;
     for (const auto &cell : this->active_cells)
       for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        D[k] = VelocityTransfer<dim>::second_moment(
+        D[k] = Apic<dim>::second_moment(
           this->shape_functions[k].value,
           this->vertex_offsets(cell, this->shape_functions[k]));
   }

@@ -12,7 +12,7 @@ namespace MPM
       prm.declare_entry(
         "Scheme",
         "flip/pic blend",
-        Patterns::Selection("flip/pic blend|xpic|apic"),
+        Patterns::Selection(TransferSchemeRegistry<dim>::names()),
         "How point velocities go to the grid and back (doc/transfers.md "
         "compares them). 'flip/pic blend': v_p <- theta (v_p + dt S+ a) + "
         "(1 - theta) S+ v with theta = 'FLIP fraction' (0 = PIC: strongly "
@@ -68,46 +68,11 @@ namespace MPM
   VelocityTransfer<dim>::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Transfer");
-    {
-      const std::string s = prm.get("Scheme");
-      transfer_scheme     = s == "xpic" ? TransferScheme::xpic :
-                            s == "apic" ? TransferScheme::apic :
-                                          TransferScheme::flip_pic_blend;
-      flip                = prm.get_double("FLIP fraction");
-      flip_time_step      = prm.get_double("FLIP fraction time step");
-      order               = prm.get_integer("XPIC order");
-      limit_affine_energy = prm.get_bool("APIC energy limit");
-    }
+    transfer_scheme = TransferSchemeRegistry<dim>::create(prm.get("Scheme"),
+                                                          "Transfer/Scheme",
+                                                          prm);
     prm.leave_subsection();
-    xpic_coefficients.clear();
-    double binomial = 1;
-    for (unsigned int k = 1; k <= order; ++k)
-      {
-        binomial = binomial * (order - k + 1) / k;
-        xpic_coefficients.push_back((k % 2 == 1 ? 1. : -1.) * binomial);
-      }
-  }
-
-
-  template <int dim>
-  std::vector<std::string>
-  VelocityTransfer<dim>::point_property_names() const
-  {
-    std::vector<std::string> names;
-    if (transfer_scheme == TransferScheme::apic)
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          names.push_back(std::string("affine_") + "xyz"[a] + "xyz"[b]);
-    if (transfer_scheme == TransferScheme::apic)
-      {
-        names.emplace_back("affine_energy");
-        if (dim == 2)
-          names.emplace_back("affine_spin_z");
-        else
-          for (unsigned int a = 0; a < dim; ++a)
-            names.push_back(std::string("affine_spin_") + "xyz"[a]);
-      }
-    return names;
+    apic_scheme = dynamic_cast<const Apic<dim> *>(transfer_scheme.get());
   }
 
 

@@ -42,7 +42,7 @@ namespace MPM
     set_time_step(const double dt)
     {
       time_step = dt;
-      flip      = transfer.flip_fraction(dt);
+      flip      = transfer.scheme().flip_fraction(dt);
     }
 
     /**

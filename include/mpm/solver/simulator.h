@@ -176,7 +176,7 @@ namespace MPM
      * 2D), and its scale sum_p m_p |x_p - centre| |v_p|.
      * With APIC it includes the affine part of each point's velocity field,
      * m_p sum_i N_i dx_i x (C_p dx_i), the part of the grid's angular
-     * momentum that the point carries (VelocityTransfer::update_affine()).
+     * momentum that the point carries (Apic::update_affine()).
      * Summed over all ranks.
      */
     std::pair<Tensor<1, 3>, double>
@@ -244,36 +244,9 @@ namespace MPM
     void
     zero_nodal_fields();
 
-    /**
-     * Flag the nodal velocity and acceleration vectors as holding valid
-     * ghost entries (each rank computes them for its ghost nodes too).
-     */
-    void
-    mark_locally_computed_fields();
-
     /// Nodal velocity p / m, constrained for the strain rate.
     void
     compute_nodal_velocity(NodalVector &velocity_out);
-
-    /**
-     * XPIC(m): replace the brought nodal velocity (nodal.momentum / mass)
-     * by sum_k c_k (P S S+)^{k-1} u, u the constrained brought velocity,
-     * S+ the interpolation to the points, S their mass-weighted projection
-     * back (ParticleGridWeights::round_trip()), P the wall constraints
-     * (VelocityTransfer::filter_coefficients()). Each order costs one pass
-     * over the points that reads only their masses and weights.
-     */
-    void
-    filter_brought_velocity();
-
-    /**
-     * APIC, at the start of a run: complete each point's affine slots
-     * (its C_p, the initial velocity gradient, written by the
-     * PointGenerator) with the energy and angular momentum of its affine
-     * part under the first step's weights.
-     */
-    void
-    initialize_affine_matrices();
 
     /// Friction, the step's nodal velocity change and the wall
     /// constraints (doc/algorithm.md).
@@ -320,10 +293,6 @@ namespace MPM
     Particles::ParticleHandler<dim> particle_handler;
 
     NodalFields nodal;
-    /// XPIC's filtered velocity and the round trip's iterate and sums.
-    NodalVector filtered_velocity;
-    NodalVector round_trip_velocity;
-    NodalVector round_trip_momentum;
 
     /**
      * The local indices into the nodal vectors of each cell's vertex

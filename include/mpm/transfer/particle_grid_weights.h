@@ -322,7 +322,7 @@ namespace MPM
     bool
     affine() const
     {
-      return context.transfer.scheme() == TransferScheme::apic;
+      return context.transfer.apic() != nullptr;
     }
 
     TransferContext<dim> context;
