@@ -74,7 +74,7 @@ main(int argc, char **argv)
             }
 
           ParameterHandler dim_prm;
-          dim_prm.declare_entry("Dimension", "2", Patterns::Integer(2, 3), "");
+          declare_dimension(dim_prm);
           for (const auto &file : cl.parameter_files)
             parse_parameter_file(dim_prm, file, true);
           apply_overrides(dim_prm, cl.overrides, true);

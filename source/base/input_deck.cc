@@ -149,6 +149,16 @@ namespace MPM
   parse_point<3>(const std::string &, const std::string &);
 
 
+  void
+  declare_dimension(dealii::ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      dealii::Patterns::Integer(2, 3),
+                      "Spatial dimension of the scene.");
+  }
+
+
   std::vector<std::string>
   split_name_list(const std::string &list, const std::string &parameter_name)
   {

@@ -8,6 +8,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/output/output_writer.h>
+#include <mpm/solver/time_stepping.h>
 
 #include <algorithm>
 #include <iomanip>
@@ -119,7 +120,7 @@ namespace MPM
                                 const double end_time) const
   {
     (void)dt;
-    return time >= end_time * (1 - 1e-12) ||
+    return time >= effective_end_time(end_time) ||
            time >= last_output_time + output_interval * (1 - 1e-9);
   }
 

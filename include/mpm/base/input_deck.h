@@ -57,6 +57,13 @@ namespace MPM
     const bool                                              ignore_undeclared);
 
   /**
+   * Declare 'Dimension' (2 or 3): read first, on its own, to choose the
+   * Simulator's dimension, then again with every other entry.
+   */
+  void
+  declare_dimension(dealii::ParameterHandler &prm);
+
+  /**
    * Split a comma separated list of names ("sand, block") into its trimmed,
    * non-empty entries. Names must be unique; duplicates are an InputError
    * naming @p parameter_name.

@@ -19,6 +19,7 @@
 #include <mpm/restart/checkpointing.h>
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
+#include <mpm/solver/statistics_file.h>
 #include <mpm/solver/time_stepping.h>
 #include <mpm/material_points/point_update.h>
 #include <mpm/transfer/particle_grid_weights.h>
@@ -330,7 +331,7 @@ namespace MPM
     /// report.
     std::vector<std::string> warnings;
 
-    std::ofstream      statistics_file;
+    StatisticsFile<dim> statistics_file;
     /// Bytes of the statistics file at the checkpoint a run resumed from.
     std::uint64_t      statistics_length = 0;
     mutable TimerOutput timer;

@@ -6,6 +6,17 @@
 
 namespace MPM
 {
+  /**
+   * The time from which a run counts as at its end time @p end_time (a
+   * relative 1e-12 before it): the steps' lengths need not add up to the
+   * end time exactly. Every comparison with the end time goes through it.
+   */
+  inline double
+  effective_end_time(const double end_time)
+  {
+    return end_time * (1 - 1e-12);
+  }
+
   using namespace dealii;
 
   /**
@@ -38,6 +49,17 @@ namespace MPM
     parse_parameters(ParameterHandler &prm);
 
     double         end_time = 1;
+
+    /**
+     * Whether @p time has reached the end time: to within a relative
+     * 1e-12, since the steps' lengths need not add up to it exactly (the
+     * last step lands on it, compute_time_step(), up to round-off).
+     */
+    bool
+    reached_end(const double time) const
+    {
+      return time >= effective_end_time(end_time);
+    }
     bool           adaptive = true;
     double         fixed_time_step = 1e-4;
     double         cfl_number      = 0.5;

@@ -1,0 +1,93 @@
+// The Simulator's nodal steps between the particle-grid passes: the
+// step's nodal fields zeroed, the nodal velocity the points brought
+// (constrained for the strain rate), and the nodal update (forces, basal
+// laws, the wall constraints), doc/algorithm.md steps 2 and 6.
+
+#include <mpm/solver/simulator.h>
+
+#include <cmath>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  Simulator<dim>::zero_nodal_fields()
+  {
+    nodal.zero([this](NodalVector &v) { weights->zero_touched_entries(v); });
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::compute_nodal_velocity(NodalVector &velocity_out)
+  {
+    TimerOutput::Scope t(timer, "nodal update");
+    for (const unsigned int i : weights->active_dofs())
+      {
+        const double m = nodal.mass.local_element(i);
+        velocity_out.local_element(i) =
+          m > 0 ? nodal.momentum.local_element(i) / m : 0.;
+      }
+    // The strain rate's velocity: a node the last nodal update held on its
+    // wall stays held (BoundaryConditions::Contact).
+    boundary_conditions.project_velocity(
+      velocity_out, BoundaryConditions<dim>::Contact::as_last_update);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_nodal_kinematics()
+  {
+    TimerOutput::Scope t(timer, "nodal update");
+    const double       dt    = time_step;
+    const double       alpha = time_stepping.local_damping;
+    for (const unsigned int i : weights->active_dofs())
+      {
+        const double m = nodal.mass.local_element(i);
+        double       f = nodal.force.local_element(i);
+        if (alpha > 0)
+          {
+            // Cundall's local damping: a force against the motion,
+            // proportional to the unbalanced force.
+            const double v = nodal.velocity.local_element(i);
+            f -= alpha * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
+          }
+        nodal.acceleration.local_element(i) = m > 0 ? f / m : 0.;
+      }
+    // The step starts from the velocity the points brought, u = p/m, not
+    // from nodal.velocity, in which compute_nodal_velocity() has already
+    // removed the normal velocity into the walls (for the stress update).
+    // That removal is part of the wall's normal impulse, and Coulomb
+    // friction must act on all of it: starting from the constrained
+    // velocity left friction out of the impulse with which the wall stops
+    // the material arriving at it (in the sliding block, 5e-5 of the
+    // normal force, which the friction limit amplified into a 3e-4 error
+    // of the acceleration at mu = 0.5). nodal.velocity_new holds u until
+    // it is advanced.
+    const auto brought_velocity = [this](const unsigned int i) {
+      const double m = nodal.mass.local_element(i);
+      return m > 0 ? nodal.momentum.local_element(i) / m : 0.;
+    };
+    for (const unsigned int i : weights->active_dofs())
+      nodal.velocity_new.local_element(i) = brought_velocity(i);
+    boundary_conditions.apply_friction(nodal.mass,
+                                       nodal.velocity_new,
+                                       nodal.acceleration,
+                                       dt);
+    for (const unsigned int i : weights->active_dofs())
+      nodal.velocity_new.local_element(i) +=
+        dt * nodal.acceleration.local_element(i);
+    boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
+    // The acceleration consistent with the constrained velocity change
+    // from u, so that the FLIP update of the points respects the
+    // constraints too.
+    for (const unsigned int i : weights->active_dofs())
+      nodal.acceleration.local_element(i) =
+        (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
+  }
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace MPM

@@ -1,0 +1,191 @@
+// The Simulator's diagnostics: sums over the points (mass, momentum,
+// energies, angular momentum) for the statistics file and the
+// postprocessors, and the detection of a run that became unstable.
+
+#include <deal.II/base/mpi.h>
+
+#include <mpm/material_points/property_layout.h>
+#include <mpm/solver/simulator.h>
+
+#include <limits>
+#include <sstream>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  Simulator<dim>::set_max_point_speed(const double v_max2)
+  {
+    // A bad point makes the largest speed infinite on every rank: the
+    // reduction that exists anyway tells all ranks to stop.
+    max_point_speed = Utilities::MPI::max(
+      point_update.first_bad_point().empty() ? std::sqrt(v_max2) :
+                                std::numeric_limits<double>::infinity(),
+      mpi_communicator);
+    if (!std::isfinite(max_point_speed))
+      stop_on_blow_up("a value became infinite or NaN.", true);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::stop_on_blow_up(const std::string &reason,
+                                  const bool         during_step)
+  {
+    using Layout = PropertyLayout<dim>;
+    // Which point: the first bad one, or else the fastest.
+    std::string here = point_update.first_bad_point();
+    if (here.empty())
+      {
+        double fastest = -1;
+        for (const auto &point : particle_handler)
+          {
+            const auto v =
+              read_vector<dim>(&point.get_properties()[Layout::velocity]);
+            if (v.norm() > fastest)
+              {
+                fastest = v.norm();
+                std::ostringstream s;
+                s << "the fastest material point, " << point.get_id()
+                  << " at (" << point.get_location() << ") in cell "
+                  << point.get_surrounding_cell()->id().to_string()
+                  << ", moves at " << v.norm() << " m/s";
+                here = s.str();
+              }
+          }
+        const double global = Utilities::MPI::max(fastest, mpi_communicator);
+        if (fastest < global)
+          here.clear();
+      }
+    // The grid-to-particle check stops inside a step, the energy check
+    // after it.
+    std::ostringstream when_stream;
+    if (during_step)
+      when_stream << "in step " << step + 1 << " (from t = " << time
+                  << " s to " << time + time_step << " s)";
+    else
+      when_stream << "by step " << step << " (t = " << time << " s)";
+    const std::string when = when_stream.str();
+    std::string       point_description;
+    for (const auto &d : Utilities::MPI::all_gather(mpi_communicator, here))
+      if (!d.empty())
+        {
+          point_description = d;
+          break;
+        }
+    write_output(true);
+    throw std::runtime_error(
+      "The run became unstable " + when + ": " + reason + " First: " +
+      point_description + ". The state at this step was written to " +
+      output_writer.directory() +
+      " (statistics, and the particle files if 'Output/Write particles' is "
+      "on). " +
+      StabilityMonitor<dim>::advice(time_step,
+                                    materials.max_wave_speed(),
+                                    active_cell_size,
+                                    time_stepping.adaptive));
+  }
+
+
+  template <int dim>
+  GlobalStatistics<dim>
+  Simulator<dim>::compute_statistics() const
+  {
+    using Layout = PropertyLayout<dim>;
+    GlobalStatistics<dim> s;
+    s.time      = time;
+    s.time_step = time_step;
+    s.step      = step;
+    for (const auto &point : particle_handler)
+      {
+        const auto           props = point.get_properties();
+        const double         m     = props[Layout::mass];
+        const Tensor<1, dim> v     = read_vector<dim>(&props[Layout::velocity]);
+        s.mass += m;
+        s.volume += props[Layout::volume];
+        s.momentum += m * v;
+        const auto energy = energy_of_point(props.data(), point.get_location());
+        s.kinetic_energy += energy[0];
+        s.strain_energy += energy[1];
+        s.gravitational_potential_energy += energy[2];
+        s.mean_speed += v.norm();
+        s.max_speed = std::max(s.max_speed, v.norm());
+        s.centre_of_mass += m * point.get_location();
+      }
+    s.n_points = particle_handler.n_global_particles();
+    s.mass     = Utilities::MPI::sum(s.mass, mpi_communicator);
+    s.volume   = Utilities::MPI::sum(s.volume, mpi_communicator);
+    s.momentum = Utilities::MPI::sum(s.momentum, mpi_communicator);
+    s.kinetic_energy = Utilities::MPI::sum(s.kinetic_energy, mpi_communicator);
+    s.strain_energy  = Utilities::MPI::sum(s.strain_energy, mpi_communicator);
+    s.gravitational_potential_energy =
+      Utilities::MPI::sum(s.gravitational_potential_energy, mpi_communicator);
+    s.removed_energy = Utilities::MPI::sum(lost_energy, mpi_communicator);
+    s.mean_speed =
+      Utilities::MPI::sum(s.mean_speed, mpi_communicator) /
+      std::max<double>(1, s.n_points);
+    s.max_speed      = Utilities::MPI::max(s.max_speed, mpi_communicator);
+    s.centre_of_mass = Utilities::MPI::sum(s.centre_of_mass, mpi_communicator) /
+                       (s.mass > 0 ? s.mass : 1);
+    s.mean_velocity = s.momentum / (s.mass > 0 ? s.mass : 1);
+    return s;
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  Simulator<dim>::energy_of_point(const double *props, const Point<dim> &x) const
+  {
+    using Layout             = PropertyLayout<dim>;
+    const double      m      = props[Layout::mass];
+    const Material   &material =
+      materials[static_cast<unsigned int>(props[Layout::material_id])];
+    return {{0.5 * m * read_vector<dim>(&props[Layout::velocity]).norm_square(),
+             props[Layout::volume] *
+               material.model->strain_energy_density(
+                 read_symmetric_tensor(&props[Layout::stress])),
+             -m * (time_stepping.gravity * x)}};
+  }
+
+
+  template <int dim>
+  std::pair<Tensor<1, 3>, double>
+  Simulator<dim>::spin_angular_momentum(
+    const Point<dim>     &centre,
+    const Tensor<1, dim> &mean_velocity) const
+  {
+    using Layout     = PropertyLayout<dim>;
+    const auto cross = [](const Tensor<1, dim> &a, const Tensor<1, dim> &b) {
+      Tensor<1, 3> c;
+      if constexpr (dim == 2)
+        c[2] = a[0] * b[1] - a[1] * b[0];
+      else
+        c = cross_product_3d(a, b);
+      return c;
+    };
+    const bool   affine = transfer.apic() != nullptr;
+    Tensor<1, 3> L;
+    double       scale = 0;
+    for (const auto &point : particle_handler)
+      {
+        const auto           props = point.get_properties();
+        const double         m     = props[Layout::mass];
+        const Tensor<1, dim> r     = point.get_location() - centre;
+        const Tensor<1, dim> v =
+          read_vector<dim>(&props[Layout::velocity]) - mean_velocity;
+        L += m * cross(r, v);
+        // With the absolute velocity: not zero for a body in pure
+        // translation, whose spin is zero.
+        scale += m * r.norm() * (v + mean_velocity).norm();
+        if (affine)
+          L += m * Apic<dim>::affine_angular_momentum(
+                     &props[transfer_slot]);
+      }
+    return {Utilities::MPI::sum(L, mpi_communicator),
+            Utilities::MPI::sum(scale, mpi_communicator)};
+  }
+
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace MPM
