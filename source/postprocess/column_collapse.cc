@@ -223,3 +223,7 @@ namespace MPM
     template class ColumnCollapse<3>;
   } // namespace Postprocessors
 } // namespace MPM
+
+MPM_REGISTER_POSTPROCESSOR(MPM::Postprocessors::ColumnCollapse,
+                           "column collapse",
+                           "a granular column collapse on a rough base: runout and final height against the aspect ratio.")

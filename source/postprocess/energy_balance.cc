@@ -61,3 +61,7 @@ namespace MPM
     template class EnergyBalance<3>;
   } // namespace Postprocessors
 } // namespace MPM
+
+MPM_REGISTER_POSTPROCESSOR(MPM::Postprocessors::EnergyBalance,
+                           "energy balance",
+                           "the energy budget of a scene without energy sources: the largest energy gain against the energy that moved.")

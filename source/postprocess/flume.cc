@@ -310,3 +310,7 @@ namespace MPM
     template class Flume<3>;
   } // namespace Postprocessors
 } // namespace MPM
+
+MPM_REGISTER_POSTPROCESSOR(MPM::Postprocessors::Flume,
+                           "flume",
+                           "the USGS flume (Denlinger and Iverson 2001): front, speed and deposit along the bed.")

@@ -65,7 +65,7 @@ namespace MPM
     prm.enter_subsection("Postprocess");
     prm.declare_entry("List of postprocessors",
                       "",
-                      Patterns::MultipleSelection(Postprocessors::names()),
+                      Patterns::MultipleSelection(Postprocessors::names<dim>()),
                       "Comparisons with references that are run during the "
                       "simulation and written to report.txt in the output "
                       "directory.");

@@ -9,6 +9,8 @@
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/vector.hpp>
 
+#include <mpm/base/plugin_registry.h>
+
 #include <memory>
 #include <ostream>
 #include <string>
@@ -104,26 +106,64 @@ namespace MPM
   }
 
 
+  /**
+   * The registry of postprocessors: each one's file ends with
+   * MPM_REGISTER_POSTPROCESSOR; its parameters are in its subsection of
+   * 'Postprocess'.
+   */
+  template <int dim>
+  using PostprocessorRegistry = PluginRegistry<Postprocessor<dim>>;
+
+
   namespace Postprocessors
   {
     /**
      * Names joined by '|' for Patterns::MultipleSelection.
      */
+    template <int dim>
     std::string
     names();
 
+    /// Every postprocessor's subsection of 'Postprocess'.
     template <int dim>
     void
     declare_parameters(ParameterHandler &prm);
 
     /**
      * Create the postprocessor @p name and let it read its subsection of
-     * "Postprocess".
+     * "Postprocess"; an unknown name is an InputError listing the choices.
      */
     template <int dim>
     std::unique_ptr<Postprocessor<dim>>
     create(const std::string &name, ParameterHandler &prm);
   } // namespace Postprocessors
 } // namespace MPM
+
+/**
+ * Register the postprocessor @p classname (templated on dim, default
+ * constructible, with a static declare_parameters(ParameterHandler &))
+ * under @p name, for 2D and 3D, at the end of its file.
+ */
+#define MPM_REGISTER_POSTPROCESSOR(classname, name, description)           \
+  MPM_REGISTER_PLUGIN(MPM::PostprocessorRegistry<2>,                       \
+                      name,                                                \
+                      description,                                         \
+                      &classname<2>::declare_parameters,                   \
+                      [](dealii::ParameterHandler &prm) {                  \
+                        std::unique_ptr<MPM::Postprocessor<2>> p =         \
+                          std::make_unique<classname<2>>();                \
+                        p->parse_parameters(prm);                          \
+                        return p;                                          \
+                      })                                                   \
+  MPM_REGISTER_PLUGIN(MPM::PostprocessorRegistry<3>,                       \
+                      name,                                                \
+                      description,                                         \
+                      &classname<3>::declare_parameters,                   \
+                      [](dealii::ParameterHandler &prm) {                  \
+                        std::unique_ptr<MPM::Postprocessor<3>> p =         \
+                          std::make_unique<classname<3>>();                \
+                        p->parse_parameters(prm);                          \
+                        return p;                                          \
+                      })
 
 #endif
