@@ -106,11 +106,9 @@ namespace MPM
                            time_step,
                            local_dofs_of_cells,
                            timer});
-    prm.enter_subsection("Transfer");
-    const bool linear_weights = prm.get("Particle-grid weights") == "linear";
-    prm.leave_subsection();
     if (transfer.apic() != nullptr &&
-        time_stepping.scheme != UpdateScheme::musl && linear_weights)
+        time_stepping.scheme != UpdateScheme::musl &&
+        !weights->second_moment_bounded_below())
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
                "scheme' USF or USL fits each point's affine matrix to the "
                "end-of-step grid velocity, which on bilinear cells was "

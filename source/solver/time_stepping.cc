@@ -1,6 +1,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <mpm/base/input_error.h>
+#include <mpm/base/plugin_registry.h>
 #include <mpm/solver/time_stepping.h>
 
 namespace MPM
@@ -77,17 +78,22 @@ namespace MPM
     prm.enter_subsection("Time stepping");
     {
       end_time          = prm.get_double("End time");
-      adaptive          = prm.get("Time step selection") == "cfl";
+      adaptive          = select_choice<bool>(prm.get("Time step selection"),
+                                     {{"cfl", true}, {"fixed", false}},
+                                     "Time stepping/Time step selection");
       fixed_time_step   = prm.get_double("Time step");
       cfl_number        = prm.get_double("CFL number");
       maximum_time_step = prm.get_double("Maximum time step");
-      const std::string s = prm.get("Update scheme");
-      scheme = s == "USF" ? UpdateScheme::usf :
-               s == "USL" ? UpdateScheme::usl :
-                            UpdateScheme::musl;
+      scheme = select_choice<UpdateScheme>(prm.get("Update scheme"),
+                                           {{"USF", UpdateScheme::usf},
+                                            {"USL", UpdateScheme::usl},
+                                            {"MUSL", UpdateScheme::musl}},
+                                           "Time stepping/Update scheme");
       local_damping = prm.get_double("Local damping");
       average_volumetric_strain =
-        prm.get("Volumetric strain averaging") == "cell";
+        select_choice<bool>(prm.get("Volumetric strain averaging"),
+                            {{"none", false}, {"cell", true}},
+                            "Time stepping/Volumetric strain averaging");
       const auto g  = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Gravity")));
       for (unsigned int d = 0; d < dim; ++d)

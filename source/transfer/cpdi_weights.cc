@@ -755,3 +755,9 @@ namespace MPM
   template class CpdiWeights<2>;
   template class CpdiWeights<3>;
 } // namespace MPM
+
+MPM_REGISTER_PARTICLE_GRID_WEIGHTS(MPM::CpdiWeights,
+                                   "cpdi",
+                                   "the mesh functions averaged over each "
+                                   "point's deforming parallelogram domain "
+                                   "(Sadeghirad et al. 2011).")

@@ -11,7 +11,8 @@
 namespace MPM
 {
   template <int dim>
-  LinearWeights<dim>::LinearWeights(const TransferContext<dim> &context)
+  LinearWeights<dim>::LinearWeights(const TransferContext<dim> &context,
+                                    ParameterHandler &)
     : ParticleGridWeights<dim>(context)
   {}
 
@@ -311,3 +312,7 @@ namespace MPM
   template class LinearWeights<2>;
   template class LinearWeights<3>;
 } // namespace MPM
+
+MPM_REGISTER_PARTICLE_GRID_WEIGHTS(MPM::LinearWeights,
+                                   "linear",
+                                   "the mesh's bilinear functions at the point.")

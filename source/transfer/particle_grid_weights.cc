@@ -1,5 +1,3 @@
-#include <mpm/transfer/cpdi_weights.h>
-#include <mpm/transfer/linear_weights.h>
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/point_domains.h>
 
@@ -22,7 +20,7 @@ namespace MPM
     prm.declare_entry(
       "Particle-grid weights",
       "linear",
-      Patterns::Selection("linear|cpdi"),
+      Patterns::Selection(ParticleGridWeightsRegistry<dim>::names()),
       "The weights by which points and nodes exchange mass, momentum and "
       "force. 'linear': the mesh's bilinear functions at the point (a "
       "point acts on the vertices of its cell only: forces jump when it "
@@ -43,9 +41,8 @@ namespace MPM
     prm.enter_subsection("Transfer");
     const std::string name = prm.get("Particle-grid weights");
     prm.leave_subsection();
-    if (name == "cpdi")
-      return std::make_unique<CpdiWeights<dim>>(context, prm);
-    return std::make_unique<LinearWeights<dim>>(context);
+    return ParticleGridWeightsRegistry<dim>::create(
+      name, "Transfer/Particle-grid weights", prm, context);
   }
 
 

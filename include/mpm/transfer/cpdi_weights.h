@@ -30,6 +30,12 @@ namespace MPM
     /// With the domains' parameters from @p prm.
     CpdiWeights(const TransferContext<dim> &context, ParameterHandler &prm);
 
+    bool
+    second_moment_bounded_below() const override
+    {
+      return true;
+    }
+
     /// The corner offsets and the shrink scale (PointDomains).
     unsigned int
     n_point_properties() const override

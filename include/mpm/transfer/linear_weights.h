@@ -24,7 +24,8 @@ namespace MPM
     using typename ParticleGridWeights<dim>::VertexValues;
     using ParticleGridWeights<dim>::n_vertices;
 
-    explicit LinearWeights(const TransferContext<dim> &context);
+    /// No parameters of its own (@p prm is unused).
+    LinearWeights(const TransferContext<dim> &context, ParameterHandler &prm);
 
     double
     prepare() override;

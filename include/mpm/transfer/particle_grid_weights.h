@@ -8,6 +8,7 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <mpm/base/plugin_registry.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/grid/q1_shape_functions.h>
@@ -94,9 +95,23 @@ namespace MPM
     static void
     declare_parameters(ParameterHandler &prm);
 
-    /// The weights named in @p prm, with their parameters.
+    /// The weights named in @p prm (ParticleGridWeightsRegistry), with
+    /// their parameters.
     static std::unique_ptr<ParticleGridWeights<dim>>
     create(ParameterHandler &prm, const TransferContext<dim> &context);
+
+    /**
+     * Whether a point's second moment under these weights is bounded
+     * below (CPDI: by its domain's), so that APIC's fit C_p = B_p D_p^-1
+     * to the end-of-step grid velocity is stable under USF and USL. With
+     * linear weights D_p vanishes on cell edges: measured unstable above
+     * CFL 0.05 (doc/transfers.md).
+     */
+    virtual bool
+    second_moment_bounded_below() const
+    {
+      return false;
+    }
 
     /// Property slots the weights keep per point, from @p first_slot
     /// (set_first_property_slot()); CPDI's domain.
@@ -347,6 +362,42 @@ namespace MPM
     std::vector<unsigned int>  touched_dofs;
     std::vector<unsigned char> dof_is_touched;
   };
+
+  /**
+   * The registry of particle-grid weights: a creator receives the
+   * parameters (at the top level; the weights' entries are in 'Transfer')
+   * and the TransferContext.
+   */
+  template <int dim>
+  using ParticleGridWeightsRegistry =
+    PluginRegistry<ParticleGridWeights<dim>, const TransferContext<dim> &>;
 } // namespace MPM
+
+/**
+ * Register the particle-grid weights @p classname (templated on dim, with
+ * a constructor (const TransferContext<dim> &, ParameterHandler &)) under
+ * @p name ('Transfer/Particle-grid weights'), for 2D and 3D.
+ */
+#define MPM_REGISTER_PARTICLE_GRID_WEIGHTS(classname, name, description)   \
+  MPM_REGISTER_PLUGIN(                                                      \
+    MPM::ParticleGridWeightsRegistry<2>,                                    \
+    name,                                                                   \
+    description,                                                            \
+    nullptr,                                                                \
+    [](dealii::ParameterHandler &prm,                                       \
+       const MPM::TransferContext<2> &context) {                            \
+      return std::unique_ptr<MPM::ParticleGridWeights<2>>(                  \
+        std::make_unique<classname<2>>(context, prm));                      \
+    })                                                                      \
+  MPM_REGISTER_PLUGIN(                                                      \
+    MPM::ParticleGridWeightsRegistry<3>,                                    \
+    name,                                                                   \
+    description,                                                            \
+    nullptr,                                                                \
+    [](dealii::ParameterHandler &prm,                                       \
+       const MPM::TransferContext<3> &context) {                            \
+      return std::unique_ptr<MPM::ParticleGridWeights<3>>(                  \
+        std::make_unique<classname<3>>(context, prm));                      \
+    })
 
 #endif
