@@ -11,14 +11,6 @@ namespace MPM
 {
   template <int dim>
   void
-  Simulator<dim>::zero_nodal_fields()
-  {
-    nodal.zero([this](NodalVector &v) { weights->zero_touched_entries(v); });
-  }
-
-
-  template <int dim>
-  void
   Simulator<dim>::compute_nodal_velocity(NodalVector &velocity_out)
   {
     TimerOutput::Scope t(timer, "nodal update");

@@ -42,6 +42,8 @@ namespace MPM
     TimerOutput::Scope t(timer, "setup");
     output_writer.initialize(mpi_communicator);
     grid.create();
+    // Gravity is given in the scene's frame, like everything else.
+    time_stepping.gravity = grid.to_mesh_frame(time_stepping.scene_gravity);
     boundary_conditions.check_boundary_ids(grid);
     boundary_conditions.set_gravity(time_stepping.gravity);
 
@@ -85,7 +87,7 @@ namespace MPM
     else
       point_generator.generate(grid,
                                materials,
-                               time_stepping.gravity,
+                               time_stepping.scene_gravity,
                                particle_handler,
                                transfer.apic() != nullptr ?
                                  transfer_slot :
@@ -109,8 +111,6 @@ namespace MPM
           warnings.push_back(warning.str());
           pcout << "Warning: " << warning.str() << '\n';
         }
-    // Gravity is given in the scene's frame, like everything else.
-    time_stepping.gravity = grid.to_mesh_frame(time_stepping.gravity);
     // p4est's first partition balances cells; the work is where the points
     // are.
     if (!checkpointing.resume() &&
@@ -239,7 +239,6 @@ namespace MPM
   void
   Simulator<dim>::do_time_step()
   {
-    zero_nodal_fields();
     prepare_transfer();
     time_step = compute_time_step();
     point_update.set_time_step(time_step);
@@ -283,7 +282,7 @@ namespace MPM
   Simulator<dim>::prepare_transfer()
   {
     active_cell_size =
-      Utilities::MPI::min(weights->prepare(), mpi_communicator);
+      Utilities::MPI::min(weights->begin_step(nodal), mpi_communicator);
   }
 
 

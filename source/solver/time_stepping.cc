@@ -97,7 +97,7 @@ namespace MPM
       const auto g  = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Gravity")));
       for (unsigned int d = 0; d < dim; ++d)
-        gravity[d] = g[d];
+        scene_gravity[d] = g[d];
     }
     prm.leave_subsection();
     check_input(adaptive || fixed_time_step > 0,

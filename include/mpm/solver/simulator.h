@@ -237,13 +237,11 @@ namespace MPM
     double
     compute_time_step() const;
 
-    /// The step's particle-grid weights (ParticleGridWeights::prepare())
-    /// and the shortest edge of the cells holding material, on all ranks.
+    /// The step's particle-grid weights, with the step's nodal fields
+    /// zeroed (ParticleGridWeights::begin_step()), and the shortest edge
+    /// of the cells holding material, on all ranks.
     void
     prepare_transfer();
-
-    void
-    zero_nodal_fields();
 
     /// Nodal velocity p / m, constrained for the strain rate.
     void

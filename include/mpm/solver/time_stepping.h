@@ -69,6 +69,11 @@ namespace MPM
     /// Replace each point's volumetric strain rate by the volume-weighted
     /// mean over the points of its cell (anti-locking).
     bool           average_volumetric_strain = false;
+    /// 'Gravity' as given, in the scene's frame (as the regions are).
+    Tensor<1, dim> scene_gravity;
+    /// Gravity in the mesh's frame, which the step works in
+    /// (BackgroundGrid::to_mesh_frame()): set once by the Simulator's
+    /// set-up, as soon as the mesh exists and before anything reads it.
     Tensor<1, dim> gravity;
   };
 } // namespace MPM

@@ -146,13 +146,19 @@ namespace MPM
     setup_partition();
 
     /**
-     * The step's weights: the active cells, each point's (or corner's)
-     * shape functions grouped by cell, the points' properties and the
-     * nodal entries the step touches. Returns the shortest edge of this
+     * Start a step: zero the step's nodal fields @p nodal where the
+     * previous step wrote them (its touched entries), then prepare() this
+     * step's weights. One call, because the order matters: zeroed after
+     * prepare(), the entries the previous step touched and this one does
+     * not would keep their old sums. Returns the shortest edge of this
      * rank's active cells (for the time step).
      */
-    virtual double
-    prepare() = 0;
+    double
+    begin_step(NodalFields &nodal)
+    {
+      nodal.zero([this](NodalVector &v) { zero_touched_entries(v); });
+      return prepare();
+    }
 
     /**
      * Particle to grid: nodal mass and momentum (with APIC's affine part)
@@ -224,6 +230,15 @@ namespace MPM
     zero_touched_entries(NodalVector &v) const;
 
   protected:
+    /**
+     * The step's weights (begin_step()): the active cells, each point's
+     * (or corner's) shape functions grouped by cell, the points'
+     * properties and the nodal entries the step touches. Returns the
+     * shortest edge of this rank's active cells.
+     */
+    virtual double
+    prepare() = 0;
+
     /**
      * A cell with material in it this step: its number of entries in
      * shape_functions (points, or CPDI corners) and the local element
