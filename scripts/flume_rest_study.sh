@@ -36,7 +36,7 @@ variants=(
   "volume14.5|--set|Material points/sand/Polygon=$titan"
   "cfl0.25|--set|Time stepping/CFL number=0.25"
   "cfl0.125|--set|Time stepping/CFL number=0.125"
-  # The blend per step (the meaning before session 12), at CFL 0.5 and
+  # The blend per step ('FLIP fraction time step = 0'), at CFL 0.5 and
   # 0.25, and at CFL 0.25 with theta^2 = 0.98 per step: the damping per
   # unit time of CFL 0.5 (doc/flume.md, "The blend's damping per unit
   # time").

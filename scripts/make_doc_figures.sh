@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Regenerate the figures of doc/ from the shipped prm files (Release build,
+# one core), by calling the scripts that make each of them.
+#
+# Usage: scripts/make_doc_figures.sh [figure ...]
+#   (no argument: the quick ones, "flume sliding_block landslide
+#   column_collapse"; "all": every figure below, several hours)
+#
+# Figures (time on one core of a shared 2-core machine, roughly):
+#   flume             doc/flume_runout.png, flume_velocity.png, flume_points.png:
+#                     prm/flume_usgs.prm as shipped (front and tail against
+#                     time; mean velocity with the paper's peak; initial and
+#                     final points), scripts/plot_flume.py (doc/flume.md).
+#                     45-110 s.
+#   sliding_block     doc/sliding_block.png and doc/sliding_block_errors.txt:
+#                     mean speed against the analytical line for mu = 0 ...
+#                     0.6, and the relative speed error,
+#                     scripts/sliding_block_sweep.sh (doc/validation.md).
+#                     1-2 min.
+#   landslide         doc/landslide_valley_3d.png: the deposit of
+#                     prm/landslide_valley_3d.prm over the ground contours,
+#                     scripts/plot_landslide.py (doc/three_d.md). 15-30 s.
+#   column_collapse   doc/column_collapse.png (and .csv): runout and final
+#                     height against the aspect ratio a = 0.5 ... 6, 5 mm,
+#                     with Lube et al.'s law, scripts/column_collapse_sweep.sh
+#                     (doc/column_collapse.md). 2-4 min.
+#   column_collapse_apic_cpdi
+#                     doc/column_collapse_apic_cpdi.png (and .csv): the same
+#                     with APIC on CPDI weights (doc/transfers.md). 13 min.
+#   column_collapse_shipped_2p5mm
+#                     doc/column_collapse_shipped_2p5mm.png (and .csv): the
+#                     shipped file on 2.5 mm cells, a = 0.5, 1, 3, 4, 6 (a = 2
+#                     is in doc/column_collapse.md's convergence table).
+#                     13 min.
+#   column_collapse_apic_cpdi_2p5mm
+#                     doc/column_collapse_apic_cpdi_2p5mm.png (and .csv):
+#                     APIC + CPDI on 2.5 mm, a = 3, 1, 4, 6, 0.5. 1.8 hours.
+#   convergence       doc/convergence.png (and convergence_bar.csv,
+#                     convergence_column.csv): vibrating bar and self-weight
+#                     column under refinement, linear and CPDI weights,
+#                     scripts/convergence_sweep.sh (doc/convergence.md).
+#                     About 15 min.
+#   speed_error       doc/speed_error.png (and .csv): error against wall time,
+#                     one parameter varied at a time, the four scenes of the
+#                     figure (vibrating bar, self-weight column, sliding
+#                     block, flume), scripts/speed_error_sweep.sh
+#                     (doc/performance.md). About 12 min, 10 of them the
+#                     flume.
+#
+# Environment:
+#   MPM_PREBUILT_DIR  a build holding mpm (and libmpm-core.so beside it):
+#                     used as it is, nothing is built (scripts/setup.sh);
+#                     the directory is put first on LD_LIBRARY_PATH.
+#   MPM_FIGURE_WORK_DIR  where the runs write their output (default
+#                     output-doc-figures in the current directory).
+# The CSV files beside the figures are rewritten by the sweeps too.
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+mpm_setup Release
+if [ -n "${MPM_PREBUILT_DIR:-}" ]; then
+  export MPM_PREBUILT_DIR
+  export LD_LIBRARY_PATH="$MPM_PREBUILT_DIR${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
+scripts="$MPM_ROOT/scripts"
+doc="$MPM_ROOT/doc"
+python=/usr/bin/python3
+
+quick=(flume sliding_block landslide column_collapse)
+every=(flume sliding_block landslide column_collapse column_collapse_apic_cpdi
+       column_collapse_shipped_2p5mm column_collapse_apic_cpdi_2p5mm
+       convergence speed_error)
+figures=("$@")
+[ ${#figures[@]} -gt 0 ] || figures=("${quick[@]}")
+[ "${figures[*]}" != all ] || figures=("${every[@]}")
+for f in "${figures[@]}"; do
+  [[ " ${every[*]} " == *" $f "* ]] || { echo "unknown figure '$f'; choices: ${every[*]} (or all)" >&2; exit 1; }
+done
+
+work="${MPM_FIGURE_WORK_DIR:-output-doc-figures}"
+mkdir -p "$work"
+cd "$work"
+apic_cpdi=(--set "Transfer/Scheme=apic" --set "Transfer/Particle-grid weights=cpdi")
+
+for f in "${figures[@]}"; do
+  echo "== $f"
+  start=$SECONDS
+  case "$f" in
+    flume)
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/flume_usgs.prm" \
+        --set "Output/Directory=flume" > flume.log
+      grep '^peak mean speed' flume/report.txt
+      "$python" "$scripts/plot_flume.py" flume "$doc" ;;
+    sliding_block)
+      "$scripts/sliding_block_sweep.sh" sliding-block-sweep ;;
+    landslide)
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/landslide_valley_3d.prm" \
+        --set "Output/Directory=landslide-valley-3d" > landslide.log
+      "$python" "$scripts/plot_landslide.py" "$MPM_ROOT/meshes/valley.asc" \
+        landslide-valley-3d "$doc/landslide_valley_3d.png" ;;
+    column_collapse)
+      "$scripts/column_collapse_sweep.sh" ;;
+    column_collapse_apic_cpdi)
+      MPM_SWEEP_NAME=apic_cpdi "$scripts/column_collapse_sweep.sh" "0.5 1 2 3 4 6" "${apic_cpdi[@]}" ;;
+    column_collapse_shipped_2p5mm)
+      MPM_CELL_SIZE=0.0025 MPM_SWEEP_NAME=shipped_2p5mm "$scripts/column_collapse_sweep.sh" "0.5 1 3 4 6" ;;
+    column_collapse_apic_cpdi_2p5mm)
+      MPM_CELL_SIZE=0.0025 MPM_SWEEP_NAME=apic_cpdi_2p5mm "$scripts/column_collapse_sweep.sh" "3 1 4 6 0.5" "${apic_cpdi[@]}" ;;
+    convergence)
+      "$scripts/convergence_sweep.sh" ;;
+    speed_error)
+      "$scripts/speed_error_sweep.sh" vibrating_bar self_weight_column sliding_block flume ;;
+  esac
+  echo "== $f: $((SECONDS - start)) s"
+done
