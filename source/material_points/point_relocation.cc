@@ -309,8 +309,8 @@ namespace MPM
     // changes only if a point left the domain. Only then (and after a
     // reordering) are the cached numbers recounted:
     // update_cached_numbers() walks all points and does three reductions,
-    // and deal.II's remove_particles() called it every step, a twentieth
-    // of the flume's run time once points changed cell in nearly every
+    // and deal.II's remove_particles() calls it every step, a twentieth
+    // of the flume's run time when points change cell in nearly every
     // step. (Its maximum number of points per cell is left stale; nothing
     // here uses it.)
     if (global_flags[3] != 0 || global_flags[4] != 0)

@@ -36,9 +36,9 @@ namespace MPM
         v         = flip * (v + dt * a[c]) + (1 - flip) * v_new[c];
       }
     // As one Tensor expression: built component by component, the new
-    // position was stored as two scalars and read back as one 16-byte
-    // value for set_location(), a store-forwarding stall that was a tenth
-    // of this loop.
+    // position is stored as two scalars and read back as one 16-byte
+    // value for set_location(), a store-forwarding stall measured at a
+    // tenth of this loop.
     const Point<dim> x = point->get_location() + dt * v_new;
     point->set_location(x);
     // Step 1 of the point location, with each new position at hand.

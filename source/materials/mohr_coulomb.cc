@@ -412,9 +412,10 @@ namespace MPM
           // the flume's run time.
           //
           // The values are kept in named scalars and the three orderings
-          // written out: sorting through an index array made the compiler
+          // written out: sorting through an index array makes the compiler
           // store the values one by one and load them back as a pair, a
-          // store-forwarding stall that was a sixth of this function's time.
+          // store-forwarding stall measured at a sixth of this function's
+          // time.
           const double sxy   = trial[0][1];
           const double szz   = trial[2][2];
           const double c     = 0.5 * (trial[0][0] + trial[1][1]);

@@ -33,7 +33,7 @@ namespace MPM
    * the inverse map in the flume.
    *
    * inverse() is bit for bit the algorithm of inverse_map_closed_form(),
-   * which is now built on it; the uncommon cases (the first root outside
+   * which is built on it; the uncommon cases (the first root outside
    * the cell, a negative discriminant, a degenerate cell) go to
    * inverse_general(), out of line.
    */

@@ -58,9 +58,9 @@ namespace MPM
    * The symmetric tensor stored at @p data (six values in SymmetricTensor's
    * own order). One block copy: the stress update reads a point's stress
    * this way and passes it to the material model, which copies it as a
-   * whole; built entry by entry (the stored order used to be Voigt's), its
-   * 8-byte stores could not be forwarded to the model's 16-byte loads, a
-   * stall that was a tenth of the Mohr-Coulomb update's time in the flume.
+   * whole; built entry by entry (as from Voigt's order), its 8-byte stores
+   * could not be forwarded to the model's 16-byte loads, a stall measured
+   * at a tenth of the Mohr-Coulomb update's time in the flume.
    */
   static_assert(sizeof(SymmetricTensor<2, 3>) == 6 * sizeof(double) &&
                   SymmetricTensor<2, 3>::component_to_unrolled_index(
