@@ -163,15 +163,6 @@ namespace MPM
 
 
   template <int dim>
-  double
-  BoundaryConditions<dim>::friction_coefficient(const std::string &name) const
-  {
-    const BasalLaw<dim> *law = basal_law(name);
-    return law != nullptr ? law->friction_coefficient() : 0.;
-  }
-
-
-  template <int dim>
   const BasalLaw<dim> *
   BoundaryConditions<dim>::basal_law(const std::string &name) const
   {

@@ -223,13 +223,6 @@ namespace MPM
     }
 
     /**
-     * Friction coefficient of the boundary called @p name (0 unless it is
-     * of type friction); InputError if there is no such boundary.
-     */
-    double
-    friction_coefficient(const std::string &name) const;
-
-    /**
      * The basal law of the boundary called @p name (nullptr unless it is
      * of type friction); InputError if there is no such boundary.
      */
