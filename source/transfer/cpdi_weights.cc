@@ -8,6 +8,7 @@
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/transfer/cpdi_weights.h>
+#include <mpm/transfer/particle_grid_passes.templates.h>
 
 #include <limits>
 #include <sstream>
@@ -125,7 +126,7 @@ namespace MPM
   template <int dim>
   CpdiWeights<dim>::CpdiWeights(const TransferContext<dim> &context,
                                 ParameterHandler           &prm)
-    : ParticleGridWeights<dim>(context)
+    : ParticleGridPasses<dim, CpdiWeights<dim>>(context)
   {
     point_domains.parse_parameters(prm);
   }
@@ -135,7 +136,7 @@ namespace MPM
   void
   CpdiWeights<dim>::setup_partition()
   {
-    ParticleGridWeights<dim>::setup_partition();
+    ParticleGridPasses<dim, CpdiWeights<dim>>::setup_partition();
     // Each cell's patch: itself first, then the non-artificial cells
     // sharing a vertex with it (where the corners may lie).
     const auto &triangulation = this->context.grid.triangulation;
@@ -182,10 +183,10 @@ namespace MPM
     corners.clear();
 
     unsigned int p = 0;
-    point_cell_begin.clear();
+    this->point_cell_begin.clear();
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
-        point_cell_begin.push_back(p);
+        this->point_cell_begin.push_back(p);
         const CellIterator cell   = it->get_surrounding_cell();
         const auto         points = particle_handler.particles_in_cell(cell);
         const auto        &patch  = cell_patches[cell->active_cell_index()];
@@ -367,7 +368,7 @@ namespace MPM
           }
         it = points.end();
       }
-    point_cell_begin.push_back(p);
+    this->point_cell_begin.push_back(p);
 
     // Group the corners by cell (a counting sort in the order in which the
     // cells were first touched), so that each pass adds to a cell's nodes
@@ -427,305 +428,37 @@ namespace MPM
 
   template <int dim>
   void
-  CpdiWeights<dim>::map_mass_and_momentum(const bool with_forces)
+  CpdiWeights<dim>::add_entry_forces(const unsigned int    k,
+                                     const double         *props,
+                                     const Tensor<1, dim> &g,
+                                     VertexValues         &forces) const
   {
-    TimerOutput::Scope     t(this->context.timer, "particle to grid");
-    using Layout                      = PropertyLayout<dim>;
-    const Tensor<1, dim>   g          = this->context.time_stepping.gravity;
-    const bool affine = this->affine();
-    unsigned int           k          = 0;
-    if (affine)
-      {
-        // APIC: each point's affine matrix at its weights of this step,
-        // which needs its second moment D_p summed over its corners first
-        // (Apic::affine_matrix()).
-        const unsigned int n_points = this->points.size();
-        second_moments(point_sum_D);
-        point_affine.resize(n_points);
-        for (unsigned int p = 0; p < n_points; ++p)
-          point_affine[p] = this->context.transfer.apic()->affine_matrix(
-            this->points[p] + this->transfer_slot, point_sum_D[p]);
-      }
-    for (const auto &cell : this->active_cells)
-      {
-        VertexValues mass, momentum, forces;
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const double *props = this->points[corner_point[k]];
-            const double  m     = corner_alpha[k] * props[Layout::mass];
-            const auto    v     = read_vector<dim>(&props[Layout::velocity]);
-            const auto   &N     = this->shape_functions[k].value;
-            if (affine)
-              {
-                // Each node receives the point's affine field there,
-                // v_p + C_p (x_i - xbar_p).
-                const auto dx = corner_node_offsets(cell, k);
-                this->add_mass_and_momentum(N,
-                                      m,
-                                      v,
-                                      &point_affine[corner_point[k]],
-                                      &dx,
-                                      mass,
-                                      momentum);
-              }
-            else
-              this->add_mass_and_momentum(
-                N, m, v, nullptr, nullptr, mass, momentum);
-            if (with_forces)
-              {
-                // f_i = -V sigma grad w_i + w_i m g, corner by corner.
-                const Tensor<1, dim> f =
-                  corner_force<dim>(props, corner_alpha[k], corner_beta[k], g);
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  forces[i] += N[i] * f;
-              }
-          }
-        this->add_to_nodes(cell, mass, this->context.nodal.mass);
-        this->add_to_nodes(cell, momentum, this->context.nodal.momentum);
-        if (with_forces)
-          this->add_to_nodes(cell, forces, this->context.nodal.force);
-      }
-    this->add_contributions_of_all_ranks(this->context.nodal.mass);
-    this->add_contributions_of_all_ranks(this->context.nodal.momentum);
-    if (with_forces)
-      this->add_contributions_of_all_ranks(this->context.nodal.force);
+    // f_i = -V sigma grad w_i + w_i m g, corner by corner.
+    const Tensor<1, dim> f =
+      corner_force<dim>(props, corner_alpha[k], corner_beta[k], g);
+    const auto &N = this->shape_functions[k].value;
+    for (unsigned int i = 0; i < n_vertices; ++i)
+      forces[i] += N[i] * f;
   }
 
 
   template <int dim>
   void
-  CpdiWeights<dim>::map_forces()
+  CpdiWeights<dim>::deform_with_point(double               *props,
+                                      const Tensor<2, dim> &grad_v) const
   {
-    TimerOutput::Scope     t(this->context.timer, "particle to grid");
-    const Tensor<1, dim>   g          = this->context.time_stepping.gravity;
-    unsigned int           k          = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        VertexValues forces;
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const Tensor<1, dim> f =
-              corner_force<dim>(this->points[corner_point[k]],
-                                corner_alpha[k],
-                                corner_beta[k],
-                                g);
-            const auto &N = this->shape_functions[k].value;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              forces[i] += N[i] * f;
-          }
-        this->add_to_nodes(cell, forces, this->context.nodal.force);
-      }
-    this->add_contributions_of_all_ranks(this->context.nodal.force);
-  }
-
-
-  template <int dim>
-  double
-  CpdiWeights<dim>::update_points_from_grid(const bool remap_momentum)
-  {
-    auto &particle_handler = this->context.particle_handler;
-    auto &updater          = this->context.point_update;
-    TimerOutput::Scope     t(this->context.timer, "grid to particle");
-    using Layout                      = PropertyLayout<dim>;
-    const unsigned int     n_points   = this->points.size();
-    // 1. Each point's interpolated acceleration and velocity, summed over
-    //    its corners.
-    point_sum_a.assign(n_points, Tensor<1, dim>());
-    point_sum_b.assign(n_points, Tensor<1, dim>());
-    // APIC: B_p, D_p and the velocity gradient of the end-of-step grid
-    // velocity, for C_p = B_p D_p^{-1} (Apic::fit_affine()).
-    const bool affine = this->affine();
-    if (affine)
-      {
-        point_sum_B.assign(n_points, Tensor<2, dim>());
-        point_sum_D.assign(n_points, Tensor<2, dim>());
-        point_sum_gradient.assign(n_points, Tensor<2, dim>());
-        point_node_scale.assign(n_points, 0.);
-      }
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        const VertexValues a_node =
-          this->read_nodes(cell, this->context.nodal.acceleration);
-        const VertexValues v_node =
-          this->read_nodes(cell, this->context.nodal.velocity_new);
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const auto    &N = this->shape_functions[k].value;
-            Tensor<1, dim> a, v;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              {
-                a += N[i] * a_node[i];
-                v += N[i] * v_node[i];
-              }
-            const unsigned int p = corner_point[k];
-            point_sum_a[p] += corner_alpha[k] * a;
-            point_sum_b[p] += corner_alpha[k] * v;
-            if (affine)
-              {
-                const auto   dx    = corner_node_offsets(cell, k);
-                const double alpha = corner_alpha[k];
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  {
-                    const Tensor<1, dim> w_dx = (alpha * N[i]) * dx[i];
-                    point_sum_B[p] += outer_product(v_node[i], w_dx);
-                    point_sum_D[p] += outer_product(w_dx, dx[i]);
-                    point_node_scale[p] =
-                      std::max(point_node_scale[p], dx[i].norm_square());
-                  }
-                point_sum_gradient[p] += outer_product(v, corner_beta[k]);
-              }
-          }
-      }
-    // 2. The points, in the order of this->points.
-    double       v_max2 = 0;
-    unsigned int p      = 0;
-    for (auto point = particle_handler.begin(); point != particle_handler.end();
-         ++point, ++p)
-      {
-        updater.advance(point,
-                      this->points[p],
-                      point_sum_a[p],
-                      point_sum_b[p],
-                      point_cell_map[p],
-                      v_max2);
-        if (affine)
-          point_affine[p] =
-            Apic<dim>::fit_affine(point_sum_B[p],
-                                              point_sum_D[p],
-                                              point_sum_gradient[p],
-                                              point_node_scale[p],
-                                              this->points[p] +
-                                                this->transfer_slot);
-      }
-    // 3. MUSL: the points' new momentum back to the nodes.
-    if (remap_momentum)
-      {
-        this->zero_touched_entries(this->context.nodal.momentum);
-        k = 0;
-        for (const auto &cell : this->active_cells)
-          {
-            VertexValues remapped;
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-              {
-                const double *props = this->points[corner_point[k]];
-                const double  m = corner_alpha[k] * props[Layout::mass];
-                const Tensor<1, dim> v =
-                  read_vector<dim>(&props[Layout::velocity]);
-                const auto &N = this->shape_functions[k].value;
-                if (affine)
-                  {
-                    // APIC's particle-to-grid with the new C_p.
-                    const auto            dx = corner_node_offsets(cell, k);
-                    const Tensor<2, dim> &C  = point_affine[corner_point[k]];
-                    for (unsigned int i = 0; i < n_vertices; ++i)
-                      remapped[i] += (N[i] * m) * (v + C * dx[i]);
-                  }
-                else
-                  for (unsigned int i = 0; i < n_vertices; ++i)
-                    remapped[i] += (N[i] * m) * v;
-              }
-            this->add_to_nodes(cell, remapped, this->context.nodal.momentum);
-          }
-        this->add_contributions_of_all_ranks(this->context.nodal.momentum);
-      }
-    return v_max2;
-  }
-
-
-  template <int dim>
-  void
-  CpdiWeights<dim>::update_stress(const NodalVector &velocity,
-                                  const bool /*set_affine: C_p is fitted in
-                                               update_points_from_grid()*/)
-  {
-    TimerOutput::Scope     t(this->context.timer, "stress update");
-    const unsigned int     n_points   = this->points.size();
-    // grad v_p = sum_i v_i (x) grad w_i = sum_c v(x_c) (x) beta_c.
-    point_sum_gradient.assign(n_points, Tensor<2, dim>());
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        const VertexValues v_node = this->read_nodes(cell, velocity);
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const auto    &N = this->shape_functions[k].value;
-            Tensor<1, dim> v;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              v += N[i] * v_node[i];
-            point_sum_gradient[corner_point[k]] +=
-              outer_product(v, corner_beta[k]);
-          }
-      }
-    const auto  &updater = this->context.point_update;
-    const double dt      = this->context.time_step;
-    if (updater.averages_volumetric_strain())
-      for (unsigned int g = 0; g + 1 < point_cell_begin.size(); ++g)
-        PointUpdate<dim>::average_volumetric_part(
-          this->points.data() + point_cell_begin[g],
-          point_sum_gradient.data() + point_cell_begin[g],
-          point_cell_begin[g + 1] - point_cell_begin[g]);
-    for (unsigned int p = 0; p < n_points; ++p)
-      {
-        double              *props  = this->points[p];
-        const Tensor<2, dim> grad_v = point_sum_gradient[p];
-        updater.update_stress(props, grad_v);
-        // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
-        const auto D = PointDomains<dim>::read(props + this->own_slot);
-        PointDomains<dim>::write(point_domains.deformed_domain(D, dt * grad_v),
-                                 props + this->own_slot);
-      }
-  }
-
-
-  template <int dim>
-  void
-  CpdiWeights<dim>::round_trip(const NodalVector &round_trip_velocity,
-                               NodalVector       &round_trip_momentum)
-  {
-    using Layout                      = PropertyLayout<dim>;
-    // S+: each point's velocity, summed over its corners.
-    point_sum_b.assign(this->points.size(), Tensor<1, dim>());
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        const VertexValues u_node =
-          this->read_nodes(cell, round_trip_velocity);
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const auto    &N = this->shape_functions[k].value;
-            Tensor<1, dim> v;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              v += N[i] * u_node[i];
-            point_sum_b[corner_point[k]] += corner_alpha[k] * v;
-          }
-      }
-    // S: the points' momentum back to the nodes with the same weights.
-    this->zero_touched_entries(round_trip_momentum);
-    k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        VertexValues sums;
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-          {
-            const unsigned int   p = corner_point[k];
-            const Tensor<1, dim> mv =
-              (corner_alpha[k] * this->points[p][Layout::mass]) *
-              point_sum_b[p];
-            const auto &N = this->shape_functions[k].value;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              sums[i] += N[i] * mv;
-          }
-        this->add_to_nodes(cell, sums, round_trip_momentum);
-      }
-    this->add_contributions_of_all_ranks(round_trip_momentum);
+    // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
+    const auto D = PointDomains<dim>::read(props + this->own_slot);
+    PointDomains<dim>::write(
+      point_domains.deformed_domain(D, this->context.time_step * grad_v),
+      props + this->own_slot);
   }
 
 
   template <int dim>
   typename CpdiWeights<dim>::VertexValues
-  CpdiWeights<dim>::corner_node_offsets(const ActiveCell  &cell,
-                                      const unsigned int k) const
+  CpdiWeights<dim>::node_offsets(const ActiveCell  &cell,
+                                const unsigned int k) const
   {
     // x_i - xbar_p = (x_i - x_c) + (x_c - xbar_p).
     auto dx = this->vertex_offsets(cell, this->shape_functions[k]);
@@ -735,23 +468,8 @@ namespace MPM
   }
 
 
-  template <int dim>
-  void
-  CpdiWeights<dim>::second_moments(std::vector<Tensor<2, dim>> &D) const
-  {
-    // D_p = sum_c alpha_c sum_i N_i(x_c) dx_i dx_i^T about the affine
-    // centre.
-    D.assign(this->points.size(), Tensor<2, dim>());
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-        D[corner_point[k]] +=
-          corner_alpha[k] *
-          Apic<dim>::second_moment(this->shape_functions[k].value,
-                                               corner_node_offsets(cell, k));
-  }
-
-
+  template class ParticleGridPasses<2, CpdiWeights<2>>;
+  template class ParticleGridPasses<3, CpdiWeights<3>>;
   template class CpdiWeights<2>;
   template class CpdiWeights<3>;
 } // namespace MPM

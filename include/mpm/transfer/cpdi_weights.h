@@ -1,7 +1,7 @@
 #ifndef mpm_transfer_cpdi_weights_h
 #define mpm_transfer_cpdi_weights_h
 
-#include <mpm/transfer/particle_grid_weights.h>
+#include <mpm/transfer/particle_grid_passes.h>
 #include <mpm/transfer/point_domains.h>
 
 namespace MPM
@@ -11,17 +11,14 @@ namespace MPM
   /**
    * 'Particle-grid weights = cpdi': each point acts on the nodes through
    * the 2^dim corners of its domain (PointDomains has the domain and the
-   * arithmetic of its weights). The entries of active_cells and
-   * shape_functions are the corners, grouped by the cell they lie in, with
-   * corner_point, corner_alpha and corner_beta saying whose corner each is
-   * and how it weighs; a pass sums over the corners cell by cell and then
-   * visits the points. LinearWeights are the same passes with one "corner"
-   * per point at the point itself, alpha = 1 and the mesh functions'
-   * gradient in place of beta, kept apart so that the cheap path keeps
-   * its per-cell layout.
+   * arithmetic of its weights). The entries of the passes
+   * (ParticleGridPasses) are the corners, grouped by the cell they lie in,
+   * with corner_point, corner_alpha and corner_beta saying whose corner
+   * each is and how it weighs; a pass sums over the corners cell by cell
+   * and then visits the points.
    */
   template <int dim>
-  class CpdiWeights : public ParticleGridWeights<dim>
+  class CpdiWeights : public ParticleGridPasses<dim, CpdiWeights<dim>>
   {
   public:
     using typename ParticleGridWeights<dim>::VertexValues;
@@ -53,6 +50,7 @@ namespace MPM
     void
     setup_partition() override;
 
+  protected:
     /**
      * Locates each point's corners in its cell's patch (shrinking the
      * domain where a corner left it: PointDomains), computes the corners'
@@ -61,33 +59,60 @@ namespace MPM
     double
     prepare() override;
 
-    void
-    map_mass_and_momentum(const bool with_forces) override;
-
-    void
-    map_forces() override;
-
-    double
-    update_points_from_grid(const bool remap_momentum) override;
-
-    /// Also deforms the domains with the points' velocity gradients.
-    void
-    update_stress(const NodalVector &velocity, const bool set_affine) override;
-
-    void
-    round_trip(const NodalVector &velocity, NodalVector &momentum) override;
-
-    void
-    second_moments(std::vector<Tensor<2, dim>> &D) const override;
-
   private:
+    friend class ParticleGridPasses<dim, CpdiWeights<dim>>;
     using typename ParticleGridWeights<dim>::ActiveCell;
     using CellIterator = typename Triangulation<dim>::active_cell_iterator;
 
-    /// APIC: the offsets x_i - xbar_p of the nodes of @p cell from the
-    /// affine centre of the point of corner @p k.
+    /// @name The hooks of ParticleGridPasses: the entries are the corners
+    /// of the points' domains, grouped by the cell they lie in.
+    /// @{
+    static constexpr bool entries_are_points = false;
+
+    unsigned int
+    point_of_entry(const unsigned int k) const
+    {
+      return corner_point[k];
+    }
+
+    /// alpha_c: the corner's share of the domain.
+    double
+    share_of_entry(const unsigned int k) const
+    {
+      return corner_alpha[k];
+    }
+
+    /// The offsets x_i - xbar_p of the nodes of @p cell from the affine
+    /// centre of the point of corner @p k (APIC).
     VertexValues
-    corner_node_offsets(const ActiveCell &cell, const unsigned int k) const;
+    node_offsets(const ActiveCell &cell, const unsigned int k) const;
+
+    /// N_i(x_c) (-V sigma beta_c + alpha_c m g).
+    void
+    add_entry_forces(const unsigned int    k,
+                     const double         *props,
+                     const Tensor<1, dim> &gravity,
+                     VertexValues         &forces) const;
+
+    /// grad v_p = sum_i v_i (x) grad w_i = sum_c v(x_c) (x) beta_c.
+    Tensor<2, dim>
+    entry_velocity_gradient(const unsigned int k,
+                            const VertexValues &,
+                            const Tensor<1, dim> &v) const
+    {
+      return outer_product(v, corner_beta[k]);
+    }
+
+    /// The domain deforms with the point: D_c <- (I + dt grad v) D_c.
+    void
+    deform_with_point(double *props, const Tensor<2, dim> &grad_v) const;
+
+    const BilinearCellMap *
+    cell_map_of_point(const unsigned int p) const
+    {
+      return point_cell_map[p];
+    }
+    /// @}
 
     PointDomains<dim> point_domains;
 
@@ -120,18 +145,8 @@ namespace MPM
     /// Each active cell's slot among the cells holding corners
     /// (invalid_unsigned_int between steps).
     std::vector<unsigned int> corner_slot_of_cell;
-    /// Each point's cell map (2D), and per-point sums of a pass.
+    /// Each point's cell map (2D).
     std::vector<const BilinearCellMap *> point_cell_map;
-    std::vector<Tensor<1, dim>>          point_sum_a, point_sum_b;
-    std::vector<Tensor<2, dim>>          point_sum_gradient;
-    /// APIC: each point's B_p and D_p (VelocityTransfer), the largest
-    /// |x_i - x_p|^2 of its nodes, and the affine matrix it hands to the
-    /// grid this step.
-    std::vector<Tensor<2, dim>> point_sum_B, point_sum_D, point_affine;
-    std::vector<double>         point_node_scale;
-    /// The first point (index into points) of each cell holding points,
-    /// and one past the last.
-    std::vector<unsigned int> point_cell_begin;
     /// The cells a corner of a point in each locally owned cell may lie in
     /// (by active_cell_index(); the cell itself first).
     std::vector<std::vector<CellIterator>> cell_patches;

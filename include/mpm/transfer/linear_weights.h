@@ -1,7 +1,7 @@
 #ifndef mpm_transfer_linear_weights_h
 #define mpm_transfer_linear_weights_h
 
-#include <mpm/transfer/particle_grid_weights.h>
+#include <mpm/transfer/particle_grid_passes.h>
 
 namespace MPM
 {
@@ -18,7 +18,7 @@ namespace MPM
    * the nodes once.
    */
   template <int dim>
-  class LinearWeights : public ParticleGridWeights<dim>
+  class LinearWeights : public ParticleGridPasses<dim, LinearWeights<dim>>
   {
   public:
     using typename ParticleGridWeights<dim>::VertexValues;
@@ -27,43 +27,68 @@ namespace MPM
     /// No parameters of its own (@p prm is unused).
     LinearWeights(const TransferContext<dim> &context, ParameterHandler &prm);
 
+  protected:
     double
     prepare() override;
 
-    void
-    map_mass_and_momentum(const bool with_forces) override;
-
-    void
-    map_forces() override;
-
-    double
-    update_points_from_grid(const bool remap_momentum) override;
-
-    void
-    update_stress(const NodalVector &velocity, const bool set_affine) override;
-
-    void
-    round_trip(const NodalVector &velocity, NodalVector &momentum) override;
-
-    void
-    second_moments(std::vector<Tensor<2, dim>> &D) const override;
-
   private:
+    friend class ParticleGridPasses<dim, LinearWeights<dim>>;
     using typename ParticleGridWeights<dim>::ActiveCell;
 
-    /**
-     * Add one point's forces (gravity and the divergence of its stress,
-     * with its shape functions @p sf) to the sums @p forces over the
-     * vertices of its cell.
-     */
-    static void
-    add_point_forces(const double                *props,
-                     const Q1ShapeFunctions<dim> &sf,
-                     const Tensor<1, dim>        &gravity,
-                     VertexValues                &forces);
+    /// @name The hooks of ParticleGridPasses: one entry per point, at the
+    /// point, with the mesh functions' values and gradients there.
+    /// @{
+    static constexpr bool entries_are_points = true;
 
-    /// The velocity gradients of a cell's points (stress update).
-    std::vector<Tensor<2, dim>> cell_gradients;
+    static unsigned int
+    point_of_entry(const unsigned int k)
+    {
+      return k;
+    }
+
+    static double
+    share_of_entry(const unsigned int)
+    {
+      return 1.;
+    }
+
+    VertexValues
+    node_offsets(const ActiveCell &cell, const unsigned int k) const
+    {
+      return this->vertex_offsets(cell, this->shape_functions[k]);
+    }
+
+    /// Gravity and the divergence of the point's stress: -V sigma grad N_i
+    /// + N_i m g.
+    void
+    add_entry_forces(const unsigned int    k,
+                     const double         *props,
+                     const Tensor<1, dim> &gravity,
+                     VertexValues         &forces) const;
+
+    /// sum_i v_i (x) grad N_i.
+    Tensor<2, dim>
+    entry_velocity_gradient(const unsigned int k,
+                            const VertexValues &v_node,
+                            const Tensor<1, dim> &) const
+    {
+      const auto    &sf = this->shape_functions[k];
+      Tensor<2, dim> grad_v;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        grad_v += outer_product(v_node[i], sf.gradient[i]);
+      return grad_v;
+    }
+
+    static void
+    deform_with_point(double *, const Tensor<2, dim> &)
+    {}
+
+    static const BilinearCellMap *
+    cell_map_of_point(const unsigned int)
+    {
+      return nullptr;
+    }
+    /// @}
   };
 } // namespace MPM
 

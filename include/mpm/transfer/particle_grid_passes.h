@@ -1,0 +1,146 @@
+#ifndef mpm_transfer_particle_grid_passes_h
+#define mpm_transfer_particle_grid_passes_h
+
+#include <mpm/transfer/particle_grid_weights.h>
+
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * The particle-grid passes, written once for every weight function.
+   *
+   * A weight function (the template argument @p Weights, derived from this
+   * class: LinearWeights, CpdiWeights) provides only what is its own: in
+   * prepare(), the step's *entries*, each a place where a point samples the
+   * mesh functions (the point itself, or one corner of its domain), grouped
+   * by the active cell they lie in, with their shape functions; and, entry
+   * by entry, these inline hooks (not virtual: each weight's passes are
+   * compiled with its own arithmetic):
+   *
+   * - `static constexpr bool entries_are_points`: whether entry k is point
+   *   k (one entry per point, in the order of the points). The passes then
+   *   finish each point inside its cell's loop instead of summing its
+   *   entries first.
+   * - `unsigned int point_of_entry(k)`: whose entry k is (index into
+   *   point_properties()).
+   * - `double share_of_entry(k)`: the share alpha_k of its point's mass
+   *   (the weights of a point sum to one over its entries).
+   * - `VertexValues node_offsets(cell, k)`: x_i - xbar_p for the vertices of
+   *   entry k's cell, about the point's affine centre (APIC).
+   * - `void add_entry_forces(k, props, gravity, forces)`: entry k's share of
+   *   its point's forces -V sigma grad w_i + w_i m g on the cell's vertices.
+   * - `Tensor<2, dim> entry_velocity_gradient(k, v_node, v)`: entry k's
+   *   share of its point's velocity gradient sum_i v_i (x) grad w_i, from
+   *   the nodal values @p v_node of its cell and the value @p v
+   *   interpolated at it.
+   * - `void deform_with_point(props, grad_v)`: whatever the weights keep on
+   *   a point that deforms with it (CPDI's domain), after its stress update.
+   * - `const BilinearCellMap *cell_map_of_point(p)` (only if the entries are
+   *   not the points): the map of point p's own cell (2D).
+   *
+   * A weight function whose entries are not its points also fills
+   * point_cell_begin in prepare() (the points grouped by their own cell,
+   * for volumetric averaging).
+   *
+   * The velocity transfer scheme enters through TransferScheme and Apic:
+   * with APIC, each entry maps its point's affine field v_p + C_p dx_i, and
+   * the point's new C_p is fitted to the end-of-step grid velocity,
+   * C_p = B_p D_p^{-1} summed over its entries (Apic::fit_affine()). Under
+   * MUSL on weights whose second moment can vanish (linear:
+   * second_moment_bounded_below() is false) C_p is instead the velocity
+   * gradient of the MUSL remap (update_stress()) and the remap is PIC's:
+   * fitted there, C_p was measured unstable (doc/transfers.md).
+   *
+   * Each pass loops over the active cells and their entries, reads a
+   * cell's nodal values once for all its entries and adds its sums to the
+   * nodes once.
+   */
+  template <int dim, class Weights>
+  class ParticleGridPasses : public ParticleGridWeights<dim>
+  {
+  public:
+    using typename ParticleGridWeights<dim>::VertexValues;
+    using ParticleGridWeights<dim>::n_vertices;
+
+    explicit ParticleGridPasses(const TransferContext<dim> &context)
+      : ParticleGridWeights<dim>(context)
+    {}
+
+    void
+    map_mass_and_momentum(const bool with_forces) override;
+
+    void
+    map_forces() override;
+
+    double
+    update_points_from_grid(const bool remap_momentum) override;
+
+    void
+    update_stress(const NodalVector &velocity, const bool set_affine) override;
+
+    void
+    round_trip(const NodalVector &velocity, NodalVector &momentum) override;
+
+    void
+    second_moments(std::vector<Tensor<2, dim>> &D) const override;
+
+  protected:
+    using typename ParticleGridWeights<dim>::ActiveCell;
+
+    /**
+     * The first point (index into point_properties()) of each cell holding
+     * points, and one past the last: filled by prepare() of weights whose
+     * entries are not the points.
+     */
+    std::vector<unsigned int> point_cell_begin;
+
+  private:
+    /// The weight function's hooks.
+    const Weights &
+    weights() const
+    {
+      return static_cast<const Weights &>(*this);
+    }
+
+    Weights &
+    weights()
+    {
+      return static_cast<Weights &>(*this);
+    }
+
+    /// What APIC's fit C_p = B_p D_p^{-1} sums over a point's entries.
+    struct AffineFitSums
+    {
+      Tensor<2, dim> B, D, gradient;
+      /// The largest |x_i - xbar_p|^2 of the point's nodes.
+      double node_scale = 0;
+    };
+
+    /**
+     * Add entry @p k (in @p cell, with the nodal velocities @p v_node and
+     * the velocity @p v interpolated at it) to its point's @p sums.
+     */
+    void
+    add_to_affine_fit(const ActiveCell   &cell,
+                      const unsigned int  k,
+                      const VertexValues &v_node,
+                      const Tensor<1, dim> &v,
+                      AffineFitSums      &sums) const;
+
+    /// The velocity gradients of a cell's points, or each point's summed
+    /// over its entries (stress update).
+    std::vector<Tensor<2, dim>> point_gradients;
+    /// Per-point sums over the entries: interpolated acceleration and
+    /// velocity.
+    std::vector<Tensor<1, dim>> point_sum_a, point_sum_v;
+    /// APIC: per-point sums for the fit, and the affine matrix each point
+    /// hands to the grid (weights whose entries are not the points).
+    std::vector<AffineFitSums>  point_affine_fit;
+    std::vector<Tensor<2, dim>> point_affine, point_second_moment;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,462 @@
+#ifndef mpm_transfer_particle_grid_passes_templates_h
+#define mpm_transfer_particle_grid_passes_templates_h
+
+// The bodies of ParticleGridPasses, included by each weight function's
+// source file, which instantiates them with its own hooks (inlined).
+
+#include <mpm/material_points/property_layout.h>
+#include <mpm/transfer/apic.h>
+#include <mpm/transfer/particle_grid_passes.h>
+
+namespace MPM
+{
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::map_mass_and_momentum(
+    const bool with_forces)
+  {
+    TimerOutput::Scope t(this->context.timer, "particle to grid");
+    using Layout               = PropertyLayout<dim>;
+    NodalFields         &nodal = this->context.nodal;
+    const Tensor<1, dim> g     = this->context.time_stepping.gravity;
+    const Apic<dim>     *apic  = this->context.transfer.apic();
+    if (apic != nullptr && !Weights::entries_are_points)
+      {
+        // APIC: each point's affine matrix at its weights of this step
+        // (Apic::affine_matrix()), which needs its second moment D_p summed
+        // over its entries first.
+        const unsigned int n_points = this->points.size();
+        second_moments(point_second_moment);
+        point_affine.resize(n_points);
+        for (unsigned int p = 0; p < n_points; ++p)
+          point_affine[p] = apic->affine_matrix(this->points[p] +
+                                                  this->transfer_slot,
+                                                point_second_moment[p]);
+      }
+    unsigned int k = 0;
+    for (const auto &cell : this->active_cells)
+      {
+        // Summed over the cell's entries first and added to the nodes once
+        // per cell: added entry by entry, every entry waited for the
+        // previous one's load-add-store of the same nodal entries.
+        VertexValues mass, momentum, forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          {
+            const unsigned int p     = weights().point_of_entry(k);
+            const double      *props = this->points[p];
+            const double m = weights().share_of_entry(k) * props[Layout::mass];
+            const auto   v = read_vector<dim>(&props[Layout::velocity]);
+            const auto  &sf = this->shape_functions[k];
+            if (apic != nullptr)
+              {
+                // Each vertex receives the point's affine field there,
+                // v_p + C_p (x_i - xbar_p).
+                const VertexValues dx = weights().node_offsets(cell, k);
+                Tensor<2, dim>     C;
+                if constexpr (Weights::entries_are_points)
+                  C = apic->affine_matrix(sf, dx, props + this->transfer_slot);
+                else
+                  C = point_affine[p];
+                this->add_mass_and_momentum(
+                  sf.value, m, v, &C, &dx, mass, momentum);
+              }
+            else
+              this->add_mass_and_momentum(
+                sf.value, m, v, nullptr, nullptr, mass, momentum);
+            if (with_forces)
+              weights().add_entry_forces(k, props, g, forces);
+          }
+        this->add_to_nodes(cell, mass, nodal.mass);
+        this->add_to_nodes(cell, momentum, nodal.momentum);
+        if (with_forces)
+          this->add_to_nodes(cell, forces, nodal.force);
+      }
+    this->add_contributions_of_all_ranks(nodal.mass);
+    this->add_contributions_of_all_ranks(nodal.momentum);
+    if (with_forces)
+      this->add_contributions_of_all_ranks(nodal.force);
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::map_forces()
+  {
+    TimerOutput::Scope   t(this->context.timer, "particle to grid");
+    const Tensor<1, dim> g = this->context.time_stepping.gravity;
+    unsigned int         k = 0;
+    for (const auto &cell : this->active_cells)
+      {
+        VertexValues forces;
+        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+          weights().add_entry_forces(
+            k, this->points[weights().point_of_entry(k)], g, forces);
+        this->add_to_nodes(cell, forces, this->context.nodal.force);
+      }
+    this->add_contributions_of_all_ranks(this->context.nodal.force);
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::add_to_affine_fit(
+    const ActiveCell     &cell,
+    const unsigned int    k,
+    const VertexValues   &v_node,
+    const Tensor<1, dim> &v,
+    AffineFitSums        &sums) const
+  {
+    const auto        &N     = this->shape_functions[k].value;
+    const VertexValues dx    = weights().node_offsets(cell, k);
+    const double       alpha = weights().share_of_entry(k);
+    for (unsigned int i = 0; i < n_vertices; ++i)
+      {
+        const Tensor<1, dim> w_dx = (alpha * N[i]) * dx[i];
+        sums.B += outer_product(v_node[i], w_dx);
+        sums.D += outer_product(w_dx, dx[i]);
+        sums.node_scale = std::max(sums.node_scale, dx[i].norm_square());
+      }
+    sums.gradient += weights().entry_velocity_gradient(k, v_node, v);
+  }
+
+
+  template <int dim, class Weights>
+  double
+  ParticleGridPasses<dim, Weights>::update_points_from_grid(
+    const bool remap_momentum)
+  {
+    TimerOutput::Scope t(this->context.timer, "grid to particle");
+    using Layout           = PropertyLayout<dim>;
+    NodalFields &nodal     = this->context.nodal;
+    auto        &updater   = this->context.point_update;
+    auto        &particles = this->context.particle_handler;
+    // APIC: the new C_p is fitted here, except under MUSL on weights whose
+    // second moment can vanish: there it is the gradient of the remapped
+    // velocity (update_stress()) and the remap below is PIC's.
+    const bool fit_affine =
+      this->affine() &&
+      (!remap_momentum || this->second_moment_bounded_below());
+    // The momentum (v_p + C_p dx_i) m_p w_ip a point maps back under MUSL,
+    // into the per-vertex sums @p remapped of entry k's cell.
+    const auto remap = [&](const ActiveCell    &cell,
+                           const unsigned int   k,
+                           const Tensor<2, dim> *C,
+                           VertexValues        &remapped) {
+      const double *props = this->points[weights().point_of_entry(k)];
+      const double  m = weights().share_of_entry(k) * props[Layout::mass];
+      const Tensor<1, dim> v  = read_vector<dim>(&props[Layout::velocity]);
+      const auto          &N  = this->shape_functions[k].value;
+      if (C != nullptr)
+        {
+          const VertexValues dx = weights().node_offsets(cell, k);
+          for (unsigned int i = 0; i < n_vertices; ++i)
+            remapped[i] += (N[i] * m) * (v + *C * dx[i]);
+        }
+      else
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          remapped[i] += (N[i] * m) * v;
+    };
+    double v_max2 = 0;
+    if constexpr (Weights::entries_are_points)
+      {
+        // Each point finished in its cell's loop: the cell's nodal values
+        // read once for all its points (through the points' property
+        // pointers the compiler may not keep them in registers).
+        auto         point = particles.begin();
+        unsigned int k     = 0;
+        if (remap_momentum)
+          this->zero_touched_entries(nodal.momentum);
+        for (const auto &cell : this->active_cells)
+          {
+            const VertexValues a_node =
+              this->read_nodes(cell, nodal.acceleration);
+            const VertexValues v_node =
+              this->read_nodes(cell, nodal.velocity_new);
+            VertexValues remapped;
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+              {
+                const auto    &N = this->shape_functions[k].value;
+                Tensor<1, dim> a, v_new;
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  {
+                    a += N[i] * a_node[i];
+                    v_new += N[i] * v_node[i];
+                  }
+                double *props = this->points[k];
+                updater.advance(point, props, a, v_new, cell.map, v_max2);
+                Tensor<2, dim> C;
+                if (fit_affine)
+                  {
+                    AffineFitSums sums;
+                    add_to_affine_fit(cell, k, v_node, v_new, sums);
+                    C = Apic<dim>::fit_affine(sums.B,
+                                              sums.D,
+                                              sums.gradient,
+                                              sums.node_scale,
+                                              props + this->transfer_slot);
+                  }
+                if (remap_momentum)
+                  remap(cell, k, fit_affine ? &C : nullptr, remapped);
+              }
+            if (remap_momentum)
+              this->add_to_nodes(cell, remapped, nodal.momentum);
+          }
+      }
+    else
+      {
+        // 1. Each point's acceleration and velocity, summed over its
+        //    entries (and, with APIC, the sums of its fit).
+        const unsigned int n_points = this->points.size();
+        point_sum_a.assign(n_points, Tensor<1, dim>());
+        point_sum_v.assign(n_points, Tensor<1, dim>());
+        if (fit_affine)
+          point_affine_fit.assign(n_points, AffineFitSums());
+        unsigned int k = 0;
+        for (const auto &cell : this->active_cells)
+          {
+            const VertexValues a_node =
+              this->read_nodes(cell, nodal.acceleration);
+            const VertexValues v_node =
+              this->read_nodes(cell, nodal.velocity_new);
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              {
+                const auto    &N = this->shape_functions[k].value;
+                Tensor<1, dim> a, v;
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  {
+                    a += N[i] * a_node[i];
+                    v += N[i] * v_node[i];
+                  }
+                const unsigned int p     = weights().point_of_entry(k);
+                const double       alpha = weights().share_of_entry(k);
+                point_sum_a[p] += alpha * a;
+                point_sum_v[p] += alpha * v;
+                if (fit_affine)
+                  add_to_affine_fit(cell, k, v_node, v, point_affine_fit[p]);
+              }
+          }
+        // 2. The points, in the order of point_properties().
+        if (fit_affine)
+          point_affine.resize(n_points);
+        unsigned int p = 0;
+        for (auto point = particles.begin(); point != particles.end();
+             ++point, ++p)
+          {
+            updater.advance(point,
+                            this->points[p],
+                            point_sum_a[p],
+                            point_sum_v[p],
+                            weights().cell_map_of_point(p),
+                            v_max2);
+            if (fit_affine)
+              {
+                const AffineFitSums &sums = point_affine_fit[p];
+                point_affine[p] =
+                  Apic<dim>::fit_affine(sums.B,
+                                        sums.D,
+                                        sums.gradient,
+                                        sums.node_scale,
+                                        this->points[p] + this->transfer_slot);
+              }
+          }
+        // 3. MUSL: the points' new momentum back to the nodes.
+        if (remap_momentum)
+          {
+            this->zero_touched_entries(nodal.momentum);
+            k = 0;
+            for (const auto &cell : this->active_cells)
+              {
+                VertexValues remapped;
+                for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+                  remap(cell,
+                        k,
+                        fit_affine ?
+                          &point_affine[weights().point_of_entry(k)] :
+                          nullptr,
+                        remapped);
+                this->add_to_nodes(cell, remapped, nodal.momentum);
+              }
+          }
+      }
+    if (remap_momentum)
+      this->add_contributions_of_all_ranks(nodal.momentum);
+    return v_max2;
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::update_stress(const NodalVector &velocity,
+                                                  const bool set_affine)
+  {
+    TimerOutput::Scope t(this->context.timer, "stress update");
+    const auto        &updater = this->context.point_update;
+    const bool         average = updater.averages_volumetric_strain();
+    // MUSL with APIC where update_points_from_grid() did not fit C_p: it is
+    // this velocity gradient (Apic::store_affine()).
+    const bool store_gradient =
+      set_affine && !this->second_moment_bounded_below();
+    // The velocity gradient at entry k of @p cell (nodal values @p v_node).
+    const auto entry_gradient = [this](const unsigned int  k,
+                                       const VertexValues &v_node) {
+      const auto    &N = this->shape_functions[k].value;
+      Tensor<1, dim> v;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        v += N[i] * v_node[i];
+      return weights().entry_velocity_gradient(k, v_node, v);
+    };
+    // The stress, volume and weights' own data of point p from its
+    // gradient.
+    const auto update_point = [&](const unsigned int    p,
+                                  const Tensor<2, dim> &grad_v,
+                                  const Tensor<2, dim> &D) {
+      double *props = this->points[p];
+      updater.update_stress(props, grad_v);
+      weights().deform_with_point(props, grad_v);
+      if (store_gradient)
+        Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
+    };
+    if constexpr (Weights::entries_are_points)
+      {
+        unsigned int k = 0;
+        for (const auto &cell : this->active_cells)
+          {
+            const VertexValues v_node = this->read_nodes(cell, velocity);
+            // With 'Volumetric strain averaging = cell', the cell's
+            // velocity gradients first, to average their traces.
+            if (average)
+              {
+                point_gradients.resize(cell.n_points);
+                for (unsigned int q = 0; q < cell.n_points; ++q)
+                  point_gradients[q] = entry_gradient(k + q, v_node);
+                PointUpdate<dim>::average_volumetric_part(
+                  this->points.data() + k,
+                  point_gradients.data(),
+                  cell.n_points);
+              }
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              update_point(k,
+                           average ? point_gradients[q] :
+                                     entry_gradient(k, v_node),
+                           store_gradient ?
+                             Apic<dim>::second_moment(
+                               this->shape_functions[k].value,
+                               weights().node_offsets(cell, k)) :
+                             Tensor<2, dim>());
+          }
+      }
+    else
+      {
+        // grad v_p summed over the point's entries.
+        const unsigned int n_points = this->points.size();
+        point_gradients.assign(n_points, Tensor<2, dim>());
+        unsigned int k = 0;
+        for (const auto &cell : this->active_cells)
+          {
+            const VertexValues v_node = this->read_nodes(cell, velocity);
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              point_gradients[weights().point_of_entry(k)] +=
+                entry_gradient(k, v_node);
+          }
+        if (average)
+          for (unsigned int c = 0; c + 1 < point_cell_begin.size(); ++c)
+            PointUpdate<dim>::average_volumetric_part(
+              this->points.data() + point_cell_begin[c],
+              point_gradients.data() + point_cell_begin[c],
+              point_cell_begin[c + 1] - point_cell_begin[c]);
+        if (store_gradient)
+          second_moments(point_second_moment);
+        for (unsigned int p = 0; p < n_points; ++p)
+          update_point(p,
+                       point_gradients[p],
+                       store_gradient ? point_second_moment[p] :
+                                        Tensor<2, dim>());
+      }
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::round_trip(const NodalVector &velocity,
+                                               NodalVector       &momentum)
+  {
+    using Layout = PropertyLayout<dim>;
+    // The velocity interpolated at entry k of a cell with nodal values
+    // @p u_node.
+    const auto interpolate = [this](const unsigned int  k,
+                                    const VertexValues &u_node) {
+      const auto    &N = this->shape_functions[k].value;
+      Tensor<1, dim> v;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        v += N[i] * u_node[i];
+      return v;
+    };
+    // Entry k's share of its point's momentum m_p v_p back to the nodes.
+    const auto project = [this](const unsigned int    k,
+                                const Tensor<1, dim> &v_p,
+                                VertexValues         &sums) {
+      const double m = weights().share_of_entry(k) *
+                       this->points[weights().point_of_entry(k)][Layout::mass];
+      const Tensor<1, dim> mv = m * v_p;
+      const auto          &N  = this->shape_functions[k].value;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        sums[i] += N[i] * mv;
+    };
+    if constexpr (!Weights::entries_are_points)
+      {
+        // S+: each point's velocity, summed over its entries.
+        point_sum_v.assign(this->points.size(), Tensor<1, dim>());
+        unsigned int k = 0;
+        for (const auto &cell : this->active_cells)
+          {
+            const VertexValues u_node = this->read_nodes(cell, velocity);
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              point_sum_v[weights().point_of_entry(k)] +=
+                weights().share_of_entry(k) * interpolate(k, u_node);
+          }
+      }
+    // S: the points' momentum back to the nodes with the same weights.
+    this->zero_touched_entries(momentum);
+    unsigned int k = 0;
+    for (const auto &cell : this->active_cells)
+      {
+        VertexValues sums;
+        if constexpr (Weights::entries_are_points)
+          {
+            const VertexValues u_node = this->read_nodes(cell, velocity);
+            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+              project(k, interpolate(k, u_node), sums);
+          }
+        else
+          for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            project(k, point_sum_v[weights().point_of_entry(k)], sums);
+        this->add_to_nodes(cell, sums, momentum);
+      }
+    this->add_contributions_of_all_ranks(momentum);
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::second_moments(
+    std::vector<Tensor<2, dim>> &D) const
+  {
+    // D_p = sum_k alpha_k sum_i N_i(x_k) dx_i dx_i^T about the affine
+    // centre.
+    D.assign(this->points.size(), Tensor<2, dim>());
+    unsigned int k = 0;
+    for (const auto &cell : this->active_cells)
+      for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+        {
+          const Tensor<2, dim> D_k =
+            Apic<dim>::second_moment(this->shape_functions[k].value,
+                                     weights().node_offsets(cell, k));
+          if constexpr (Weights::entries_are_points)
+            D[k] = D_k;
+          else
+            D[weights().point_of_entry(k)] += weights().share_of_entry(k) * D_k;
+        }
+  }
+} // namespace MPM
+
+#endif
