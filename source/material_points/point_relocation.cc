@@ -120,6 +120,20 @@ namespace MPM
   PointRelocation<dim>::relocate_leavers(
     Particles::ParticleHandler<dim> &particle_handler)
   {
+    // Step 1 (relocate(), or locate_in_cell() from the grid-to-particle
+    // pass) saw every point of this rank since the last call.
+    Assert(stats.n_points_mapped - n_mapped_at_last_relocation ==
+             particle_handler.n_locally_owned_particles(),
+           ExcMessage("relocate_leavers() needs every point of this rank "
+                      "located in its old cell first (relocate() or "
+                      "locate_in_cell() for each point): " +
+                      std::to_string(stats.n_points_mapped -
+                                     n_mapped_at_last_relocation) +
+                      " of " +
+                      std::to_string(
+                        particle_handler.n_locally_owned_particles()) +
+                      " were."));
+    n_mapped_at_last_relocation = stats.n_points_mapped;
     const MPI_Comm comm = grid->triangulation.get_communicator();
     // Taken over from step 1, which starts empty in the next step.
     const std::vector<ParticleIterator> leavers =

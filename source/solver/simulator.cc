@@ -130,6 +130,7 @@ namespace MPM
     if (checkpointing.resume())
       {
         deserialize_state(state);
+        max_point_speed_step = step;
         pcout << "Resumed from the checkpoint at step " << step
               << ", t = " << time << " s\n";
       }
@@ -192,6 +193,12 @@ namespace MPM
   Simulator<dim>::compute_time_step() const
   {
     double dt = time_stepping.fixed_time_step;
+    Assert(max_point_speed_step == step,
+           ExcMessage("The time step of step " + std::to_string(step) +
+                      " needs the points' largest speed at its start, which "
+                      "the grid-to-particle pass of the step before sets; "
+                      "it was set for step " +
+                      std::to_string(max_point_speed_step) + "."));
     if (time_stepping.adaptive)
       dt = std::min(time_stepping.maximum_time_step,
                     time_stepping.cfl_number * active_cell_size /

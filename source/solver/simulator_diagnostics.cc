@@ -22,6 +22,8 @@ namespace MPM
       point_update.first_bad_point().empty() ? std::sqrt(v_max2) :
                                 std::numeric_limits<double>::infinity(),
       mpi_communicator);
+    // For the next step's time step.
+    max_point_speed_step = step + 1;
     if (!std::isfinite(max_point_speed))
       stop_on_blow_up("a value became infinite or NaN.", true);
   }

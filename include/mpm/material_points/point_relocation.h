@@ -198,6 +198,9 @@ namespace MPM
     Statistics                             stats;
     /// The points found outside their old cell in step 1 of this step.
     std::vector<ParticleIterator> leavers_of_this_step;
+    /// stats.n_points_mapped at the end of the last relocate_leavers():
+    /// step 1 must have seen every point since (asserted).
+    unsigned long long n_mapped_at_last_relocation = 0;
   };
 } // namespace MPM
 

@@ -311,7 +311,11 @@ namespace MPM
     double       time      = 0;
     double       time_step = 0;
     unsigned int step      = 0;
-    double       max_point_speed = 0;
+    /// The points' largest speed at the start of step
+    /// max_point_speed_step (the CFL step reads it; asserted): left by the
+    /// previous step's grid-to-particle pass, or by the set-up.
+    double       max_point_speed      = 0;
+    unsigned int max_point_speed_step = 0;
     /// Shortest edge among the cells that hold points this step (all ranks).
     double       active_cell_size = 0;
     unsigned int output_index    = 0;
