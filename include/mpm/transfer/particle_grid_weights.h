@@ -69,9 +69,12 @@ namespace MPM
    * asking VelocityTransfer for the per-point arithmetic and PointUpdate
    * for the point's new velocity, position and stress.
    *
-   * Implementations: LinearWeights (the mesh's own functions at the point)
-   * and CpdiWeights (the functions averaged over each point's deforming
-   * domain). A new weight function is a new class and a line in create().
+   * The passes are written once, in ParticleGridPasses, over what a
+   * weight function provides: LinearWeights (the mesh's own functions at
+   * the point) and CpdiWeights (the functions averaged over each point's
+   * deforming domain). A new weight function is a new class derived from
+   * ParticleGridPasses, registered with MPM_REGISTER_PARTICLE_GRID_WEIGHTS
+   * (doc/extending.md).
    *
    * Every pass loops over the active cells (the cells holding points, or
    * with CPDI the cells holding points' corners) and, per cell, over its
