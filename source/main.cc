@@ -2,13 +2,16 @@
  * The `mpm` executable: reads one or more parameter files (later ones
  * override earlier ones; two passes, so that the
  * user-named subsections - materials, regions, boundaries - can be
- * declared), applies command line overrides and runs the simulation.
+ * declared), applies command line overrides and runs the simulation, or
+ * with --material-point-driver the material-point driver on the same
+ * parameters.
  */
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
+#include <mpm/materials/material_point_driver.h>
 #include <mpm/solver/simulator.h>
 
 #include <fstream>
@@ -34,6 +37,7 @@ namespace
     // Pass 2: everything, strictly.
     ParameterHandler prm;
     Simulator<dim>::declare_parameters(prm, names);
+    MaterialPointDriver::declare_parameters(prm);
     for (const auto &file : cl.parameter_files)
       parse_parameter_file(prm, file, false);
     apply_overrides(prm, cl.overrides, false);
@@ -42,6 +46,16 @@ namespace
       {
         if (Utilities::MPI::this_mpi_process(comm) == 0)
           prm.print_parameters(std::cout, ParameterHandler::PRM);
+        return 0;
+      }
+
+    if (cl.material_point_driver)
+      {
+        // One material point, no mesh: on the first rank only.
+        MaterialPointDriver driver;
+        driver.parse_parameters(prm);
+        if (Utilities::MPI::this_mpi_process(comm) == 0)
+          driver.run();
         return 0;
       }
 

@@ -32,12 +32,18 @@ namespace MPM
   std::string
   usage()
   {
-    return "Usage: mpm [--print-parameters] [input.prm [more.prm ...]] "
+    return "Usage: mpm [--print-parameters|--material-point-driver] "
+           "[input.prm [more.prm ...]] "
            "[--set \"Subsection/Entry=value\"]...\n"
            "  input.prm             parameter file to run; further files "
            "override its entries\n"
            "  --set PATH=VALUE      override one parameter after reading the "
            "file (repeatable)\n"
+           "  --material-point-driver\n"
+           "                        take one point of a material of "
+           "input.prm along the path of\n"
+           "                        'Material point driver' (doc/materials.md) "
+           "instead of running the scene\n"
            "  --print-parameters    print every parameter with its "
            "documentation and default\n"
            "                        (or the values of input.prm if given) "
@@ -55,6 +61,8 @@ namespace MPM
         const std::string arg = argv[i];
         if (arg == "--print-parameters")
           cl.print_parameters = true;
+        else if (arg == "--material-point-driver")
+          cl.material_point_driver = true;
         else if (arg == "--help" || arg == "-h")
           cl.show_help = true;
         else if (arg == "--set" || arg.rfind("--set=", 0) == 0)

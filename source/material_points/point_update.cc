@@ -72,20 +72,17 @@ namespace MPM
     using Layout               = PropertyLayout<dim>;
     const double       dt      = time_step;
     const unsigned int n_state = materials.max_n_state_variables();
-    SymmetricTensor<2, 3> strain_increment;
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = a; b < dim; ++b)
-        strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
-
     const Material &material =
       materials[static_cast<unsigned int>(props[Layout::material_id])];
     SymmetricTensor<2, 3> stress =
       read_symmetric_tensor(&props[Layout::stress]);
-    material.model->update_stress(strain_increment,
-                                  stress,
-                                  ArrayView<double>(props + Layout::state,
-                                                    n_state),
-                                  dt);
+    const SymmetricTensor<2, 3> strain_increment =
+      materials.update_stress<dim>(material,
+                                   grad_v,
+                                   dt,
+                                   stress,
+                                   ArrayView<double>(props + Layout::state,
+                                                     n_state));
     write_symmetric_tensor(stress, &props[Layout::stress]);
     write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
                              strain_increment,

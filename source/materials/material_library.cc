@@ -46,6 +46,7 @@ namespace MPM
   {
     declare_name_list(prm);
     prm.enter_subsection("Materials");
+    ObjectiveStressRate::declare_parameters(prm);
     for (const auto &name : names)
       {
         prm.enter_subsection(name);
@@ -71,6 +72,7 @@ namespace MPM
   {
     const auto names = read_name_list(prm);
     prm.enter_subsection("Materials");
+    stress_rate.parse_parameters(prm);
     for (const auto &name : names)
       {
         prm.enter_subsection(name);

@@ -29,6 +29,8 @@ namespace MPM
     std::vector<std::string>                         parameter_files;
     std::vector<std::pair<std::string, std::string>> overrides;
     bool                                             print_parameters = false;
+    /// --material-point-driver: run MaterialPointDriver instead of a scene.
+    bool                                             material_point_driver = false;
     bool                                             show_help        = false;
   };
 

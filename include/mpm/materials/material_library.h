@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/materials/material_model.h>
+#include <mpm/materials/objective_stress_rate.h>
 
 #include <memory>
 #include <string>
@@ -94,8 +95,48 @@ namespace MPM
     double
     max_wave_speed() const;
 
+    /**
+     * One point's stress update over a time step @p dt from its velocity
+     * gradient @p grad_v (dim x dim; plane strain in 2D): the stress is
+     * carried with the point's rotation (objective_stress_rate()) while
+     * @p material's model adds the increment of the strain
+     * sym(grad_v) dt, updating the point's @p state. Returns that strain
+     * increment. The MPM step (PointUpdate) and the material-point driver
+     * both update stresses here.
+     */
+    template <int dim>
+    SymmetricTensor<2, 3>
+    update_stress(const Material          &material,
+                  const Tensor<2, dim>    &grad_v,
+                  const double             dt,
+                  SymmetricTensor<2, 3>   &stress,
+                  const ArrayView<double> &state) const
+    {
+      SymmetricTensor<2, 3> strain_increment;
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = a; b < dim; ++b)
+          strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
+      // Half the step's rotation before the model's increment and half
+      // after (Strang splitting): the increment is added in the step's
+      // mid-point frame, second order in dt (one rotation before it would
+      // be first order: doc/materials.md).
+      stress_rate.rotate<dim>(stress, grad_v, 0.5 * dt);
+      material.model->update_stress(strain_increment, stress, state, dt);
+      stress_rate.rotate<dim>(stress, grad_v, 0.5 * dt);
+      return strain_increment;
+    }
+
+    /// How the points' stress follows their rotation ('Materials/Objective
+    /// stress rate'), for every material.
+    const ObjectiveStressRate &
+    objective_stress_rate() const
+    {
+      return stress_rate;
+    }
+
   private:
     std::vector<Material> materials;
+    ObjectiveStressRate   stress_rate;
   };
 } // namespace MPM
 
