@@ -1,5 +1,7 @@
-// The particle-grid passes with CPDI weights (CpdiWeights, PointDomains):
-// every point acts on the nodes through the corners of its domain.
+// CPDI weights (CpdiWeights, PointDomains): each point's domain corners
+// located in the patch of its cell and weighed (prepare()), and what the
+// corners contribute to the forces and the velocity gradient; the passes
+// are ParticleGridPasses'.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
