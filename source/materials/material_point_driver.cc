@@ -4,6 +4,7 @@
 #include <mpm/base/plugin_registry.h>
 #include <mpm/materials/material_point_driver.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -163,13 +164,43 @@ namespace MPM
   }
 
 
-  void
-  MaterialPointDriver::run() const
+  MaterialPointDriver
+  MaterialPointDriver::from_text(const std::string &parameters,
+                                 const std::string &output_directory)
+  {
+    ParameterHandler names_prm;
+    MaterialLibrary::declare_name_list(names_prm);
+    names_prm.parse_input_from_string(parameters, "", true);
+
+    ParameterHandler prm;
+    MaterialLibrary::declare_parameters(prm,
+                                        MaterialLibrary::read_name_list(
+                                          names_prm));
+    declare_parameters(prm);
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory", ".", Patterns::Anything());
+    prm.leave_subsection();
+    prm.parse_input_from_string(parameters);
+    prm.enter_subsection("Output");
+    prm.set("Directory", output_directory);
+    prm.leave_subsection();
+
+    MaterialPointDriver driver;
+    driver.parse_parameters(prm);
+    return driver;
+  }
+
+
+  MaterialPointDriver::History
+  MaterialPointDriver::run_path() const
   {
     const Material    &material = materials[material_index];
     const unsigned int n_state  = material.model->n_state_variables();
     const unsigned int n_total  = n_steps * n_cycles;
     const double       dt       = duration / n_total;
+
+    History history;
+    history.records.reserve(n_total + 1);
 
     SymmetricTensor<2, 3> stress = -confining_pressure *
                                    unit_symmetric_tensor<3>();
@@ -191,54 +222,17 @@ namespace MPM
                                     dt);
       shear_modulus = (probe[0][1] - stress[0][1]) / delta;
     }
+    history.shear_modulus = shear_modulus;
 
-    std::error_code ec;
-    std::filesystem::create_directories(directory, ec);
-    std::ofstream csv(directory + "/stress_strain.csv");
-    check_input(static_cast<bool>(csv),
-                "Cannot write '" + directory +
-                  "/stress_strain.csv' (parameter 'Output/Directory').");
-    csv << std::setprecision(10)
-        << "step,time,path_strain,volumetric_strain,sxx,syy,szz,sxy,syz,sxz,"
-           "p,q";
-    for (const auto &name : material.model->state_variable_names())
-      csv << ',' << name;
-    csv << '\n';
-
-    const bool shear = path == Path::simple_shear ||
-                       path == Path::cyclic_simple_shear;
-    const bool jaumann = materials.objective_stress_rate().type() ==
-                         ObjectiveStressRate::Type::jaumann;
-    // The hypoelastic closed form of simple shear (Dienes 1979) with the
-    // probed modulus: Jaumann sigma_xy = G sin(gamma), sigma_xx =
-    // -sigma_yy = G (1 - cos(gamma)); fixed axes sigma_xy = G gamma.
-    double max_deviation = 0;
-    const auto deviation = [&](const double gamma) {
-      const double sxy = jaumann ? shear_modulus * std::sin(gamma) :
-                                   shear_modulus * gamma;
-      const double sxx =
-        jaumann ? shear_modulus * (1 - std::cos(gamma)) : 0.;
-      const double p0 = -confining_pressure;
-      return std::max({std::abs(stress[0][1] - sxy),
-                       std::abs(stress[0][0] - p0 - sxx),
-                       std::abs(stress[1][1] - p0 + sxx)}) /
-             shear_modulus;
+    double                volumetric_strain = 0;
+    SymmetricTensor<2, 3> strain;
+    const auto            record = [&](const unsigned int n) {
+      history.records.push_back(
+        Record{n, n * dt, path_strain(n), volumetric_strain, strain, stress,
+               state});
     };
+    record(0);
 
-    double volumetric_strain = 0;
-    const auto write_row = [&](const unsigned int n) {
-      csv << n << ',' << n * dt << ',' << path_strain(n) << ','
-          << volumetric_strain << ',' << stress[0][0] << ',' << stress[1][1]
-          << ',' << stress[2][2] << ',' << stress[0][1] << ','
-          << stress[1][2] << ',' << stress[0][2] << ','
-          << mean_pressure(stress) << ',' << deviator_stress(stress);
-      for (const double s : state)
-        csv << ',' << s;
-      csv << '\n';
-    };
-    write_row(0);
-
-    unsigned int max_iterations = 0;
     for (unsigned int n = 0; n < n_total; ++n)
       {
         Tensor<2, 3> L = velocity_gradient(n, dt);
@@ -292,19 +286,80 @@ namespace MPM
                     side = 1;
                   }
               }
-            max_iterations = std::max(max_iterations, it + 1);
+            history.max_iterations = std::max(history.max_iterations, it + 1);
             L[0][0] = L[2][2] = x;
           }
         const SymmetricTensor<2, 3> strain_increment =
           materials.update_stress<3>(
             material, L, dt, stress, ArrayView<double>(state));
         volumetric_strain += trace(strain_increment);
-        if (shear && shear_modulus > 0)
-          max_deviation =
-            std::max(max_deviation, deviation(path_strain(n + 1)));
-        write_row(n + 1);
+        strain += strain_increment;
+        record(n + 1);
+      }
+    return history;
+  }
+
+
+  void
+  MaterialPointDriver::run() const
+  {
+    const Material &material = materials[material_index];
+    const History   history  = run_path();
+    const double    shear_modulus = history.shear_modulus;
+
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    std::ofstream csv(directory + "/stress_strain.csv");
+    check_input(static_cast<bool>(csv),
+                "Cannot write '" + directory +
+                  "/stress_strain.csv' (parameter 'Output/Directory').");
+    csv << std::setprecision(10)
+        << "step,time,path_strain,volumetric_strain,sxx,syy,szz,sxy,syz,sxz,"
+           "p,q";
+    for (const auto &name : material.model->state_variable_names())
+      csv << ',' << name;
+    csv << '\n';
+    for (const Record &r : history.records)
+      {
+        csv << r.step << ',' << r.time << ',' << r.path_strain << ','
+            << r.volumetric_strain << ',' << r.stress[0][0] << ','
+            << r.stress[1][1] << ',' << r.stress[2][2] << ','
+            << r.stress[0][1] << ',' << r.stress[1][2] << ','
+            << r.stress[0][2] << ',' << mean_pressure(r.stress) << ','
+            << deviator_stress(r.stress);
+        for (const double s : r.state)
+          csv << ',' << s;
+        csv << '\n';
       }
 
+    const bool shear = path == Path::simple_shear ||
+                       path == Path::cyclic_simple_shear;
+    const bool jaumann = materials.objective_stress_rate().type() ==
+                         ObjectiveStressRate::Type::jaumann;
+    // The hypoelastic closed form of simple shear (Dienes 1979) with the
+    // probed modulus: Jaumann sigma_xy = G sin(gamma), sigma_xx =
+    // -sigma_yy = G (1 - cos(gamma)); fixed axes sigma_xy = G gamma.
+    double max_deviation = 0;
+    if (shear && shear_modulus > 0)
+      for (unsigned int i = 1; i < history.records.size(); ++i)
+        {
+          const SymmetricTensor<2, 3> &stress = history.records[i].stress;
+          const double gamma = history.records[i].path_strain;
+          const double sxy   = jaumann ? shear_modulus * std::sin(gamma) :
+                                         shear_modulus * gamma;
+          const double sxx =
+            jaumann ? shear_modulus * (1 - std::cos(gamma)) : 0.;
+          const double p0 = -confining_pressure;
+          max_deviation =
+            std::max(max_deviation,
+                     std::max({std::abs(stress[0][1] - sxy),
+                               std::abs(stress[0][0] - p0 - sxx),
+                               std::abs(stress[1][1] - p0 + sxx)}) /
+                       shear_modulus);
+        }
+
+    const Record      &last    = history.records.back();
+    const unsigned int n_state = last.state.size();
     std::ostringstream report;
     report << std::setprecision(8);
     report << "material point driver\n"
@@ -318,21 +373,21 @@ namespace MPM
            << "\n"
            << "objective stress rate: " << (jaumann ? "jaumann" : "none")
            << "\n"
-           << "steps: " << n_total << "\n"
+           << "steps: " << last.step << "\n"
            << "initial shear modulus (probed) [Pa]: " << shear_modulus << "\n"
-           << "final path strain: " << path_strain(n_total) << "\n"
-           << "final volumetric strain: " << volumetric_strain << "\n"
-           << "final stress xx yy zz xy [Pa]: " << stress[0][0] << ' '
-           << stress[1][1] << ' ' << stress[2][2] << ' ' << stress[0][1]
-           << "\n"
-           << "final p, q [Pa]: " << mean_pressure(stress) << ' '
-           << deviator_stress(stress) << "\n";
+           << "final path strain: " << last.path_strain << "\n"
+           << "final volumetric strain: " << last.volumetric_strain << "\n"
+           << "final stress xx yy zz xy [Pa]: " << last.stress[0][0] << ' '
+           << last.stress[1][1] << ' ' << last.stress[2][2] << ' '
+           << last.stress[0][1] << "\n"
+           << "final p, q [Pa]: " << mean_pressure(last.stress) << ' '
+           << deviator_stress(last.stress) << "\n";
     if (n_state > 0)
       {
         report << "final state:";
         const auto names = material.model->state_variable_names();
         for (unsigned int i = 0; i < n_state; ++i)
-          report << ' ' << names[i] << '=' << state[i];
+          report << ' ' << names[i] << '=' << last.state[i];
         report << "\n";
       }
     if (shear && shear_modulus > 0)
@@ -341,7 +396,7 @@ namespace MPM
              << max_deviation << "\n";
     if (path == Path::drained_triaxial)
       report << "most iterations for the lateral strain in a step: "
-             << max_iterations << "\n";
+             << history.max_iterations << "\n";
     std::ofstream(directory + "/report.txt") << report.str();
     std::cout << report.str();
   }

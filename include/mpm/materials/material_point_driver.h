@@ -38,6 +38,9 @@ namespace MPM
    * volumetric strain, stresses, p, q, the model's state variables) and
    * OUTPUT/report.txt (the final state, and for simple shear the deviation
    * from the closed form of a hypoelastic body, Dienes 1979).
+   *
+   * A model's unit test builds a driver with from_text() and compares the
+   * History of run_path() with the model's closed form.
    */
   class MaterialPointDriver
   {
@@ -51,6 +54,34 @@ namespace MPM
       drained_triaxial
     };
 
+    /// The point's state after one step of the path.
+    struct Record
+    {
+      unsigned int step = 0;
+      double       time = 0;
+      /// The path's own strain (gamma, or the axial compressive strain).
+      double path_strain = 0;
+      /// The sum of the traces of the strain increments.
+      double volumetric_strain = 0;
+      /// The sum of the strain increments sym(L) dt (compression negative).
+      SymmetricTensor<2, 3> strain;
+      SymmetricTensor<2, 3> stress;
+      /// The model's state variables (state_variable_names()).
+      std::vector<double> state;
+    };
+
+    /// What run_path() gives back.
+    struct History
+    {
+      /// Step 0 (the initial state) to the last step.
+      std::vector<Record> records;
+      /// The initial shear modulus, probed by a small shear increment.
+      double shear_modulus = 0;
+      /// 'drained triaxial': the most iterations one step's lateral strain
+      /// needed.
+      unsigned int max_iterations = 0;
+    };
+
     /// The subsection 'Material point driver'.
     static void
     declare_parameters(ParameterHandler &prm);
@@ -59,9 +90,30 @@ namespace MPM
     void
     parse_parameters(ParameterHandler &prm);
 
+    /**
+     * A driver read from the text of a parameter file that sets
+     * 'Materials' and 'Material point driver' (the two passes of the mpm
+     * executable: the list of materials first), writing to
+     * @p output_directory. For unit tests.
+     */
+    static MaterialPointDriver
+    from_text(const std::string &parameters,
+              const std::string &output_directory = ".");
+
+    /// Runs the path and gives back every step's state; writes nothing.
+    History
+    run_path() const;
+
     /// Runs the path and writes the curve and the report.
     void
     run() const;
+
+    /// The material the point is made of.
+    const Material &
+    material() const
+    {
+      return materials[material_index];
+    }
 
   private:
     /// The velocity gradient of step @p n of the strain-controlled paths
