@@ -120,6 +120,47 @@ namespace MPM
         "The largest principal stress the material carries, in Pa (tension "
         "positive), >= 0 and at most c cot(phi), where the Mohr-Coulomb "
         "planes meet; 0 for a cohesionless material.");
+      prm.enter_subsection("Strain softening");
+      {
+        prm.declare_entry(
+          "Enabled",
+          "false",
+          Patterns::Bool(),
+          "Whether the friction angle, dilation angle and cohesion soften "
+          "with the accumulated plastic shear strain kappa: the values above "
+          "are the peak ones, reached up to 'Peak plastic shear strain'; "
+          "from there they go linearly to the residual ones below, reached "
+          "at 'Residual plastic shear strain'. The tension cutoff follows as "
+          "min(T, c cot(phi)).");
+        prm.declare_entry("Residual friction angle",
+                          "30",
+                          Patterns::Double(0, 90),
+                          "Friction angle at the residual strain, in degrees, "
+                          "in (0, peak friction angle].");
+        prm.declare_entry("Residual dilation angle",
+                          "0",
+                          Patterns::Double(0, 90),
+                          "Dilation angle at the residual strain, in degrees, "
+                          "in [0, min(peak dilation angle, residual friction "
+                          "angle)].");
+        prm.declare_entry("Residual cohesion",
+                          "0",
+                          Patterns::Double(0),
+                          "Cohesion at the residual strain in Pa, in [0, peak "
+                          "cohesion].");
+        prm.declare_entry("Peak plastic shear strain",
+                          "0",
+                          Patterns::Double(0),
+                          "The accumulated plastic shear strain at which "
+                          "softening starts, >= 0.");
+        prm.declare_entry("Residual plastic shear strain",
+                          "0.1",
+                          Patterns::Double(0),
+                          "The accumulated plastic shear strain at which the "
+                          "residual strength is reached, > 'Peak plastic shear "
+                          "strain'.");
+      }
+      prm.leave_subsection();
     }
 
 
@@ -129,8 +170,8 @@ namespace MPM
       elasticity.parse_parameters(prm, "mohr coulomb");
       const double phi_degrees = prm.get_double("Friction angle");
       const double psi_degrees = prm.get_double("Dilation angle");
-      cohesion                 = prm.get_double("Cohesion");
-      tension_cutoff           = prm.get_double("Tension cutoff");
+      const double cohesion    = prm.get_double("Cohesion");
+      const double tension_cutoff = prm.get_double("Tension cutoff");
 
       check_input(phi_degrees > 0 && phi_degrees < 90,
                   name_of("Friction angle") + " = " +
@@ -145,41 +186,120 @@ namespace MPM
                   name_of("Cohesion") + " = " + std::to_string(cohesion) +
                     " Pa: must be >= 0.");
 
-      friction_angle = phi_degrees * degree;
-      dilation_angle = psi_degrees * degree;
+      peak_strength.friction_angle = phi_degrees * degree;
+      peak_strength.dilation_angle = psi_degrees * degree;
+      peak_strength.cohesion       = cohesion;
 
       // Above c cot(phi) the tension planes would lie outside the apex of
       // the Mohr-Coulomb pyramid and never be reached: a cutoff there is an
       // input mistake, not a harmless no-op. Rounding in a value copied
       // from a calculator is accepted and clamped.
-      const double apex = cohesion / std::tan(friction_angle);
+      const double apex = cohesion / std::tan(peak_strength.friction_angle);
       check_input(
         tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
         name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
           " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
           " Pa], the apex of the Mohr-Coulomb surface.");
-      tension_cutoff = std::min(tension_cutoff, apex);
+      peak_strength.tension_cutoff = std::min(tension_cutoff, apex);
 
-      setup_surfaces();
+      prm.enter_subsection("Strain softening");
+      softening = prm.get_bool("Enabled");
+      if (softening)
+        {
+          const auto entry = [](const std::string &e) {
+            return name_of("Strain softening/" + e);
+          };
+          const double phi_r = prm.get_double("Residual friction angle");
+          const double psi_r = prm.get_double("Residual dilation angle");
+          const double c_r   = prm.get_double("Residual cohesion");
+          softening_start    = prm.get_double("Peak plastic shear strain");
+          softening_end      = prm.get_double("Residual plastic shear strain");
+          check_input(phi_r > 0 && phi_r <= phi_degrees,
+                      entry("Residual friction angle") + " = " +
+                        std::to_string(phi_r) +
+                        " degrees: must lie in (0, peak friction angle = " +
+                        std::to_string(phi_degrees) + "].");
+          check_input(psi_r >= 0 && psi_r <= psi_degrees && psi_r <= phi_r,
+                      entry("Residual dilation angle") + " = " +
+                        std::to_string(psi_r) +
+                        " degrees: must lie in [0, min(peak dilation angle "
+                        "= " +
+                        std::to_string(psi_degrees) +
+                        ", residual friction angle = " +
+                        std::to_string(phi_r) + ")].");
+          check_input(c_r >= 0 && c_r <= cohesion,
+                      entry("Residual cohesion") + " = " +
+                        std::to_string(c_r) +
+                        " Pa: must lie in [0, peak cohesion = " +
+                        std::to_string(cohesion) + "].");
+          check_input(softening_start >= 0 &&
+                        softening_end > softening_start,
+                      entry("Residual plastic shear strain") + " = " +
+                        std::to_string(softening_end) +
+                        ": must be larger than " +
+                        entry("Peak plastic shear strain") + " = " +
+                        std::to_string(softening_start) + " (>= 0).");
+          residual_strength.friction_angle = phi_r * degree;
+          residual_strength.dilation_angle = psi_r * degree;
+          residual_strength.cohesion       = c_r;
+          residual_strength.tension_cutoff =
+            std::min(peak_strength.tension_cutoff,
+                     c_r / std::tan(residual_strength.friction_angle));
+        }
+      prm.leave_subsection();
+
+      inverse_two_shear_modulus = 0.5 / elasticity.shear_modulus;
+      peak                      = make_surfaces(peak_strength, true);
+      if (softening)
+        residual = make_surfaces(residual_strength, true);
     }
 
 
-    void
-    MohrCoulomb::setup_surfaces()
+    MohrCoulomb::Strength
+    MohrCoulomb::strength_at(const double kappa) const
     {
-      const double sin_phi = std::sin(friction_angle);
-      const double sin_psi = std::sin(dilation_angle);
-      const double k       = 2 * cohesion * std::cos(friction_angle);
-      inverse_two_shear_modulus = 0.5 / elasticity.shear_modulus;
+      if (!softening || kappa <= softening_start)
+        return peak_strength;
+      if (kappa >= softening_end)
+        return residual_strength;
+      const double w = (kappa - softening_start) /
+                       (softening_end - softening_start);
+      Strength strength;
+      strength.friction_angle =
+        peak_strength.friction_angle +
+        w * (residual_strength.friction_angle - peak_strength.friction_angle);
+      strength.dilation_angle =
+        peak_strength.dilation_angle +
+        w * (residual_strength.dilation_angle - peak_strength.dilation_angle);
+      strength.cohesion =
+        peak_strength.cohesion +
+        w * (residual_strength.cohesion - peak_strength.cohesion);
+      strength.tension_cutoff =
+        std::min(peak_strength.tension_cutoff,
+                 strength.cohesion / std::tan(strength.friction_angle));
+      return strength;
+    }
+
+
+    MohrCoulomb::YieldSurfaces
+    MohrCoulomb::make_surfaces(const Strength &strength,
+                               const bool      prepare_sets) const
+    {
+      YieldSurfaces surfaces;
+      const double  sin_phi = std::sin(strength.friction_angle);
+      const double  sin_psi = std::sin(strength.dilation_angle);
+      const double  k = 2 * strength.cohesion * std::cos(strength.friction_angle);
+      surfaces.tension_cutoff = strength.tension_cutoff;
 
       // Gradients a and flow directions n in the sorted frame.
       std::array<std::array<double, 3>, 6> flow;
-      gradient[0] = {{1 + sin_phi, 0, -(1 - sin_phi)}};
-      flow[0]     = {{1 + sin_psi, 0, -(1 - sin_psi)}};
-      gradient[1] = {{1 + sin_phi, -(1 - sin_phi), 0}};
-      flow[1]     = {{1 + sin_psi, -(1 - sin_psi), 0}};
-      gradient[2] = {{0, 1 + sin_phi, -(1 - sin_phi)}};
-      flow[2]     = {{0, 1 + sin_psi, -(1 - sin_psi)}};
+      auto &gradient = surfaces.gradient;
+      gradient[0]    = {{1 + sin_phi, 0, -(1 - sin_phi)}};
+      flow[0]        = {{1 + sin_psi, 0, -(1 - sin_psi)}};
+      gradient[1]    = {{1 + sin_phi, -(1 - sin_phi), 0}};
+      flow[1]        = {{1 + sin_psi, -(1 - sin_psi), 0}};
+      gradient[2]    = {{0, 1 + sin_phi, -(1 - sin_phi)}};
+      flow[2]        = {{0, 1 + sin_psi, -(1 - sin_psi)}};
       for (unsigned int i = 0; i < 3; ++i)
       {
         gradient[3 + i]    = {{0, 0, 0}};
@@ -188,82 +308,109 @@ namespace MPM
       }
       for (unsigned int s = 0; s < 6; ++s)
       {
-        bound[s]        = (s < 3) ? k : tension_cutoff;
-        const double tr = flow[s][0] + flow[s][1] + flow[s][2];
+        surfaces.bound[s] = (s < 3) ? k : strength.tension_cutoff;
+        const double tr   = flow[s][0] + flow[s][1] + flow[s][2];
         for (unsigned int i = 0; i < 3; ++i)
-          return_direction[s][i] =
+          surfaces.return_direction[s][i] =
             elasticity.lambda * tr + 2 * elasticity.shear_modulus * flow[s][i];
-        shear_strain_per_multiplier[s] =
-          deviatoric_norm(return_direction[s]) * inverse_two_shear_modulus;
+        surfaces.shear_strain_per_multiplier[s] =
+          deviatoric_norm(surfaces.return_direction[s]) *
+          inverse_two_shear_modulus;
       }
 
-      // Candidate sets of at most three surfaces (three independent planes
-      // fix a point in principal space), fewest first: a point on a plane
-      // is tried before the edges and the edges before the corners.
-      candidate_sets.clear();
-      for (unsigned int size = 1; size <= 3; ++size)
-        for (unsigned int bits = 1; bits < 64; ++bits)
-          if (std::bitset<6>(bits).count() == size)
+      if (prepare_sets)
+        {
+          surfaces.candidate_sets = candidate_topology();
+          for (CandidateSet &set : surfaces.candidate_sets)
+            prepare_candidate_set(surfaces, set);
+        }
+      return surfaces;
+    }
+
+
+    void
+    MohrCoulomb::prepare_candidate_set(const YieldSurfaces &surfaces,
+                                       CandidateSet        &set)
+    {
+      std::array<std::array<double, 3>, 3> A{};
+      for (unsigned int i = 0; i < set.m; ++i)
+        for (unsigned int j = 0; j < set.m; ++j)
+          for (unsigned int d = 0; d < 3; ++d)
+            A[i][j] += surfaces.gradient[set.active[i]][d] *
+                       surfaces.return_direction[set.active[j]][d];
+      // Column j of the inverse solves A x = e_j; solve() tells a
+      // dependent set from the matrix alone.
+      set.independent = true;
+      for (unsigned int j = 0; j < set.m && set.independent; ++j)
+        {
+          std::array<double, 3> e{}, column{};
+          e[j]            = 1;
+          set.independent = solve(A, e, set.m, column);
+          for (unsigned int i = 0; i < set.m; ++i)
+            set.inverse[i][j] = column[i];
+        }
+      if (set.m == 3)
+        {
+          std::array<std::array<double, 3>, 3> G;
+          std::array<double, 3>                b;
+          for (unsigned int i = 0; i < 3; ++i)
             {
-              CandidateSet set;
-              set.bits = bits;
-              for (unsigned int k = 0; k < 6; ++k)
-                if (bits & (1u << k))
-                  set.active[set.m++] = k;
-              std::array<std::array<double, 3>, 3> A{};
-              for (unsigned int i = 0; i < set.m; ++i)
-                for (unsigned int j = 0; j < set.m; ++j)
-                  for (unsigned int d = 0; d < 3; ++d)
-                    A[i][j] += gradient[set.active[i]][d] *
-                               return_direction[set.active[j]][d];
-              // Column j of the inverse solves A x = e_j; solve() tells a
-              // dependent set from the matrix alone.
-              set.independent = true;
-              for (unsigned int j = 0; j < set.m && set.independent; ++j)
-                {
-                  std::array<double, 3> e{}, column{};
-                  e[j]            = 1;
-                  set.independent = solve(A, e, set.m, column);
-                  for (unsigned int i = 0; i < set.m; ++i)
-                    set.inverse[i][j] = column[i];
-                }
-              if (set.m == 3)
-                {
-                  std::array<std::array<double, 3>, 3> G;
-                  std::array<double, 3>                b;
-                  for (unsigned int i = 0; i < 3; ++i)
-                    {
-                      G[i] = gradient[set.active[i]];
-                      b[i] = bound[set.active[i]];
-                    }
-                  set.corner_defined = solve(G, b, 3, set.corner);
-                }
-              candidate_sets.push_back(set);
+              G[i] = surfaces.gradient[set.active[i]];
+              b[i] = surfaces.bound[set.active[i]];
             }
-      // The main plane (0: s1 - s3, the largest shear) is active in almost
-      // every return, so the sets that contain it go first, fewest planes
-      // first, and among the pairs the one with the tension cutoff of s1
-      // (plane 3) first. In the flume (a replay of 50,780 returns at
-      // t = 0.23 s) 62 % of the returns end on the main plane alone and
-      // 38 % on the main plane with the cutoff of s1 ({0, 3}: sand at zero
-      // confinement near the free surface), under 0.2 % elsewhere. Plane 0
-      // first cut the sets tried per plastic point from 4.3 to 1.7; {0, 3}
-      // before the edges {0, 1} and {0, 2} cuts it to 1.4. The admissible
-      // return is unique, so the order changes the cost, not the result.
-      const auto rank = [](const CandidateSet &set) {
-        return std::make_tuple(!(set.bits & 1u), set.m, !(set.bits & 8u));
-      };
-      std::stable_sort(candidate_sets.begin(),
-                       candidate_sets.end(),
-                       [&rank](const CandidateSet &a, const CandidateSet &b) {
-                         return rank(a) < rank(b);
-                       });
+          set.corner_defined = solve(G, b, 3, set.corner);
+        }
+    }
+
+
+    const std::vector<MohrCoulomb::CandidateSet> &
+    MohrCoulomb::candidate_topology()
+    {
+      static const std::vector<CandidateSet> topology = []() {
+        // Candidate sets of at most three surfaces (three independent
+        // planes fix a point in principal space), fewest first: a point on
+        // a plane is tried before the edges and the edges before the
+        // corners.
+        std::vector<CandidateSet> sets;
+        for (unsigned int size = 1; size <= 3; ++size)
+          for (unsigned int bits = 1; bits < 64; ++bits)
+            if (std::bitset<6>(bits).count() == size)
+              {
+                CandidateSet set;
+                set.bits = bits;
+                for (unsigned int k = 0; k < 6; ++k)
+                  if (bits & (1u << k))
+                    set.active[set.m++] = k;
+                sets.push_back(set);
+              }
+        // The main plane (0: s1 - s3, the largest shear) is active in almost
+        // every return, so the sets that contain it go first, fewest planes
+        // first, and among the pairs the one with the tension cutoff of s1
+        // (plane 3) first. In the flume (a replay of 50,780 returns at
+        // t = 0.23 s) 62 % of the returns end on the main plane alone and
+        // 38 % on the main plane with the cutoff of s1 ({0, 3}: sand at zero
+        // confinement near the free surface), under 0.2 % elsewhere. Plane 0
+        // first cut the sets tried per plastic point from 4.3 to 1.7; {0, 3}
+        // before the edges {0, 1} and {0, 2} cuts it to 1.4. The admissible
+        // return is unique, so the order changes the cost, not the result.
+        const auto rank = [](const CandidateSet &set) {
+          return std::make_tuple(!(set.bits & 1u), set.m, !(set.bits & 8u));
+        };
+        std::stable_sort(sets.begin(),
+                         sets.end(),
+                         [&rank](const CandidateSet &a, const CandidateSet &b) {
+                           return rank(a) < rank(b);
+                         });
+        return sets;
+      }();
+      return topology;
     }
 
 
     template <unsigned int m>
     inline DEAL_II_ALWAYS_INLINE bool
-    MohrCoulomb::try_candidate_set(const CandidateSet          &set,
+    MohrCoulomb::try_candidate_set(const YieldSurfaces         &surfaces,
+                                   const CandidateSet          &set,
                                    const std::array<double, 3> &trial,
                                    const std::array<double, 6> &f_trial,
                                    const double                 tol,
@@ -288,7 +435,7 @@ namespace MPM
         {
           for (unsigned int j = 0; j < m; ++j)
             for (unsigned int d = 0; d < 3; ++d)
-              x[d] -= dgamma[j] * return_direction[set.active[j]][d];
+              x[d] -= dgamma[j] * surfaces.return_direction[set.active[j]][d];
         }
       else
         {
@@ -304,7 +451,7 @@ namespace MPM
         return false;
       bool admissible = true;
       for (unsigned int k = 0; k < 6; ++k)
-        admissible = admissible && (plane_value(k, x) <= tol);
+        admissible = admissible && (surfaces.plane_value(k, x) <= tol);
       if (!admissible)
         return false;
 
@@ -317,8 +464,10 @@ namespace MPM
     }
 
 
+    template <bool prepared>
     inline DEAL_II_ALWAYS_INLINE unsigned int
     MohrCoulomb::return_principal_inline(
+      const YieldSurfaces   &surfaces,
       std::array<double, 3> &s,
       double                &plastic_shear_increment) const
     {
@@ -330,15 +479,18 @@ namespace MPM
                inverse_two_shear_modulus;
       };
 
-      const double scale = std::max(
-        {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), bound[0], bound[3]});
+      const double scale = std::max({std::abs(s[0]),
+                                     std::abs(s[1]),
+                                     std::abs(s[2]),
+                                     surfaces.bound[0],
+                                     surfaces.bound[3]});
       const double tol = relative_tolerance * scale;
 
       std::array<double, 6> f_trial;
       bool                  elastic = true;
       for (unsigned int k = 0; k < 6; ++k)
       {
-        f_trial[k] = plane_value(k, trial);
+        f_trial[k] = surfaces.plane_value(k, trial);
         elastic    = elastic && (f_trial[k] <= tol);
       }
       if (elastic)
@@ -348,33 +500,49 @@ namespace MPM
       // the stiffness.
       const double multiplier_tol = tol / elasticity.p_wave_modulus();
 
-      for (const CandidateSet &set : candidate_sets)
-      {
-        if (!set.independent)
-          continue;
+      // Try one candidate set; on success the returned stress is in s.
+      const auto try_set = [&](const CandidateSet &set) {
         std::array<double, 3> x;
         double                dgamma = 0;
         const bool            found =
-          set.m == 1 ?
-                       try_candidate_set<1>(set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
-          set.m == 2 ?
-                       try_candidate_set<2>(set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
-                       try_candidate_set<3>(set, trial, f_trial, tol, multiplier_tol, x, dgamma);
+          set.m == 1 ? try_candidate_set<1>(
+                         surfaces, set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
+          set.m == 2 ? try_candidate_set<2>(
+                         surfaces, set, trial, f_trial, tol, multiplier_tol, x, dgamma) :
+                       try_candidate_set<3>(
+                         surfaces, set, trial, f_trial, tol, multiplier_tol, x, dgamma);
         if (found)
           {
             s = x;
             plastic_shear_increment =
               set.m == 1 ? std::abs(dgamma) *
-                             shear_strain_per_multiplier[set.active[0]] :
+                             surfaces.shear_strain_per_multiplier[set.active[0]] :
                            shear_strain_to(x);
-            return set.bits;
           }
-      }
+        return found;
+      };
+
+      if constexpr (prepared)
+        {
+          for (const CandidateSet &set : surfaces.candidate_sets)
+            if (set.independent && try_set(set))
+              return set.bits;
+        }
+      else
+        // Surfaces of one return (a softening point): prepare each set
+        // when it is tried; most returns end with the first or second.
+        for (CandidateSet set : candidate_topology())
+          {
+            prepare_candidate_set(surfaces, set);
+            if (set.independent && try_set(set))
+              return set.bits;
+          }
 
       // Not reached for phi in (0, 90) and psi in [0, phi] (the unit test
       // counts it over random trial stresses); the apex of the admissible
       // set is the safe answer.
-      s = {{tension_cutoff, tension_cutoff, tension_cutoff}};
+      const double t = surfaces.tension_cutoff;
+      s = {{t, t, t}};
       plastic_shear_increment = shear_strain_to(s);
       return fallback;
     }
@@ -384,7 +552,84 @@ namespace MPM
     MohrCoulomb::return_principal(std::array<double, 3> &s) const
     {
       double plastic_shear_increment;
-      return return_principal_inline(s, plastic_shear_increment);
+      return return_principal_inline<true>(peak, s, plastic_shear_increment);
+    }
+
+
+    unsigned int
+    MohrCoulomb::return_with_softening(std::array<double, 3> &s,
+                                       double &plastic_shear_increment,
+                                       const double kappa) const
+    {
+      if (kappa >= softening_end)
+        return return_principal_inline<true>(residual, s, plastic_shear_increment);
+
+      const std::array<double, 3> trial = s;
+      // The return from the trial stress with the strength at k, the
+      // prepared surfaces where the strength is the peak or residual one.
+      double     increment = 0;
+      const auto return_at = [&](const double k) {
+        s = trial;
+        if (k >= softening_end)
+          return return_principal_inline<true>(residual, s, increment);
+        if (k <= softening_start)
+          return return_principal_inline<true>(peak, s, increment);
+        return return_principal_inline<false>(make_surfaces(strength_at(k), false),
+                                       s,
+                                       increment);
+      };
+
+      // Elastic, or plastic and still before the peak strain: done.
+      unsigned int bits = return_at(kappa);
+      if (bits == 0 || kappa + increment <= softening_start)
+        {
+          plastic_shear_increment = increment;
+          return bits;
+        }
+
+      // The strength at the end of the step, k = kappa + dkappa(k): a root
+      // of g(k) = kappa + dkappa(k) - k. At the lower end (kappa, or the
+      // peak strain for a point that crosses it) g > 0; at kappa plus the
+      // increment of a return to the residual strength, the smallest
+      // surface, g <= 0. Regula falsi (Illinois) on that bracket.
+      double       lo   = std::max(kappa, softening_start);
+      double       g_lo = kappa + increment - lo;
+      return_at(softening_end);
+      double hi   = kappa + increment;
+      bits        = return_at(hi);
+      double g_hi = kappa + increment - hi;
+      // g_hi = 0: the residual strength is reached within the step. (A
+      // positive g_hi, a strength path that is not monotonic, is not
+      // possible with linear softening; the return at hi is then kept.)
+      const double tolerance = 1e-12 * (softening_end - softening_start);
+      if (g_hi < 0)
+        {
+          int side = 0;
+          for (unsigned int it = 0; it < 100; ++it)
+            {
+              const double k = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+              bits           = return_at(k);
+              const double g = kappa + increment - k;
+              if (std::abs(g) <= tolerance || hi - lo <= tolerance)
+                break;
+              if (g > 0)
+                {
+                  lo = k, g_lo = g;
+                  if (side == 1)
+                    g_hi *= 0.5;
+                  side = 1;
+                }
+              else
+                {
+                  hi = k, g_hi = g;
+                  if (side == -1)
+                    g_lo *= 0.5;
+                  side = -1;
+                }
+            }
+        }
+      plastic_shear_increment = increment;
+      return bits;
     }
 
 
@@ -394,7 +639,44 @@ namespace MPM
                                const ArrayView<double>     &state,
                                const double) const
     {
+      if (softening)
+        update_stress_with_softening(strain_increment, stress, state);
+      else
+        update_stress<false>(strain_increment, stress, state);
+    }
+
+
+    void
+    MohrCoulomb::update_stress_with_softening(
+      const SymmetricTensor<2, 3> &strain_increment,
+      SymmetricTensor<2, 3>       &stress,
+      const ArrayView<double>     &state) const
+    {
+      update_stress<true>(strain_increment, stress, state);
+    }
+
+
+    template <bool with_softening>
+    inline DEAL_II_ALWAYS_INLINE void
+    MohrCoulomb::update_stress(const SymmetricTensor<2, 3> &strain_increment,
+                               SymmetricTensor<2, 3>       &stress,
+                               const ArrayView<double>     &state) const
+    {
       AssertIndexRange(0, state.size());
+      // The return of this point: with softening at its accumulated plastic
+      // shear strain. (Without, the return never reaches a function that
+      // takes the principal values by reference, so they stay in
+      // registers: the softening branch in the same function cost 10 % of
+      // the model's time.)
+      const auto return_mapping = [&](std::array<double, 3> &s,
+                                      double &plastic_shear_increment) {
+        if constexpr (with_softening)
+          return return_with_softening(s, plastic_shear_increment, state[0]);
+        else
+          return return_principal_inline<true>(peak,
+                                               s,
+                                               plastic_shear_increment);
+      };
       // The same elastic predictor as LinearElastic, so that an elastic
       // step gives the same stress to the last bit.
       SymmetricTensor<2, 3> trial = stress;
@@ -434,7 +716,7 @@ namespace MPM
           else
             s = {{major, minor, szz}};
           double plastic_shear_increment;
-          if (return_principal_inline(s, plastic_shear_increment) == 0)
+          if (return_mapping(s, plastic_shear_increment) == 0)
             {
               stress = trial;
               return;
@@ -481,7 +763,7 @@ namespace MPM
       s = {{eigen[0].first, eigen[1].first, eigen[2].first}};
 
       double plastic_shear_increment;
-      if (return_principal_inline(s, plastic_shear_increment) == 0)
+      if (return_mapping(s, plastic_shear_increment) == 0)
       {
         stress = trial;
         return;
@@ -513,7 +795,7 @@ namespace MPM
     double
     MohrCoulomb::default_k0() const
     {
-      return 1 - std::sin(friction_angle);
+      return 1 - std::sin(peak_strength.friction_angle);
     }
 
 

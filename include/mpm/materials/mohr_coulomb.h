@@ -38,8 +38,21 @@ namespace MPM
      * return_principal() and doc/materials.md.
      *
      * State: the accumulated equivalent plastic shear strain
-     * sqrt(2/3 e_p : e_p) (e_p the deviatoric plastic strain increment),
-     * which shows where the material has yielded.
+     * kappa = sum sqrt(2/3 de_p : de_p) (de_p the deviatoric plastic strain
+     * increment), which shows where the material has yielded.
+     *
+     * Strain softening (subsection 'Strain softening', off by default):
+     * phi, psi and c go linearly from their peak values to residual ones
+     * as kappa goes from 'Peak plastic shear strain' to 'Residual plastic
+     * shear strain' (the form of CB-Geo MPM and Anura3D), and the tension
+     * cutoff is min(T, c cot(phi)). The return is implicit in kappa: the
+     * strength is the one at the step's final kappa, found by regula falsi
+     * on kappa_n + dkappa(kappa) = kappa, bracketed by the peak-side
+     * (kappa_n) and residual strengths, so that a returned stress lies on
+     * the surface of its own kappa (return_with_softening()). Points
+     * before the peak or past the residual strain use surfaces prepared
+     * once, like a model without softening; only points inside the
+     * softening range pay for surfaces built on the fly.
      */
     class MohrCoulomb : public MaterialModel
     {
@@ -113,6 +126,9 @@ namespace MPM
       return_principal(std::array<double, 3> &s) const;
 
     private:
+      struct CandidateSet;
+      struct YieldSurfaces;
+
       /**
        * The body of return_principal(), inlined into update_stress() so
        * that the principal values stay in registers: passed through
@@ -123,33 +139,55 @@ namespace MPM
        * plastic shear strain (0 for an elastic step): for a return to one
        * plane |dgamma| times the plane's shear_strain_per_multiplier,
        * otherwise from the stress change.
+       *
+       * @p prepared: whether @p surfaces has its candidate sets prepared
+       * (else each is prepared when tried); a template argument, so that
+       * the prepared path has no branch for it.
        */
+      template <bool prepared>
       inline unsigned int
-      return_principal_inline(std::array<double, 3> &s,
+      return_principal_inline(const YieldSurfaces   &surfaces,
+                              std::array<double, 3> &s,
                               double &plastic_shear_increment) const;
 
-      struct CandidateSet;
+      /**
+       * update_stress() for a material with or without softening (the
+       * two paths compiled apart).
+       */
+      template <bool with_softening>
+      inline void
+      update_stress(const SymmetricTensor<2, 3> &strain_increment,
+                    SymmetricTensor<2, 3>       &stress,
+                    const ArrayView<double>     &state) const;
+
+      /// update_stress<true>, a function of its own: called from
+      /// update_stress(), it leaves the path without softening as
+      /// compact as a model without softening.
+      void
+      update_stress_with_softening(
+        const SymmetricTensor<2, 3> &strain_increment,
+        SymmetricTensor<2, 3>       &stress,
+        const ArrayView<double>     &state) const;
 
       /**
-       * The value of plane @p k of the admissible set at principal
-       * stresses @p x: f_k(x) = a_k . x - bound_k (positive outside).
+       * The return of a softening material at @p kappa (see the class
+       * documentation): implicit in kappa.
        */
-      double
-      plane_value(const unsigned int k, const std::array<double, 3> &x) const
-      {
-        return gradient[k][0] * x[0] + gradient[k][1] * x[1] +
-               gradient[k][2] * x[2] - bound[k];
-      }
+      unsigned int
+      return_with_softening(std::array<double, 3> &s,
+                            double                &plastic_shear_increment,
+                            const double           kappa) const;
 
       /**
        * Try one candidate set of @p m active planes (a template argument,
        * so that the loops over the set unroll; the sets are tried in the
-       * order of candidate_sets). On success, @p x holds the returned
-       * principal stresses and the function returns true.
+       * order of candidate_topology()). On success, @p x holds the
+       * returned principal stresses and the function returns true.
        */
       template <unsigned int m>
       inline bool
-      try_candidate_set(const CandidateSet          &set,
+      try_candidate_set(const YieldSurfaces         &surfaces,
+                        const CandidateSet          &set,
                         const std::array<double, 3> &trial,
                         const std::array<double, 6> &f_trial,
                         const double                 tol,
@@ -157,22 +195,51 @@ namespace MPM
                         std::array<double, 3>       &x,
                         double &first_multiplier) const;
 
-      IsotropicElasticity elasticity;
-      double friction_angle = 0; // radians
-      double dilation_angle = 0; // radians
-      double cohesion       = 0;
-      double tension_cutoff = 0;
+      /// The strength parameters (angles in radians, stresses in Pa).
+      struct Strength
+      {
+        double friction_angle = 0;
+        double dilation_angle = 0;
+        double cohesion       = 0;
+        double tension_cutoff = 0;
+      };
 
+      /// The strength at accumulated plastic shear strain @p kappa.
+      Strength
+      strength_at(const double kappa) const;
 
       /**
-       * The six surfaces f_k = a_k . s - b_k in the sorted principal frame,
-       * their elastic return directions r_k = D n_k (n_k the flow
-       * direction), and the candidate active sets in the order they are
-       * tried. Set up once in parse_parameters().
+       * The surfaces of @p strength, with every candidate set prepared if
+       * @p prepare_sets (surfaces used for many returns) or none (the
+       * surfaces of one softening point's return: each set is prepared
+       * when it is tried).
        */
-      std::array<std::array<double, 3>, 6> gradient;
-      std::array<std::array<double, 3>, 6> return_direction;
-      std::array<double, 6>                bound;
+      YieldSurfaces
+      make_surfaces(const Strength &strength, const bool prepare_sets) const;
+
+      /**
+       * Fill what of @p set depends on the material (its inverse, whether
+       * it is independent, its corner), from @p surfaces' planes.
+       */
+      static void
+      prepare_candidate_set(const YieldSurfaces &surfaces, CandidateSet &set);
+
+      /**
+       * The candidate sets (which planes are active) in the order they are
+       * tried, the same for every material.
+       */
+      static const std::vector<CandidateSet> &
+      candidate_topology();
+
+      IsotropicElasticity elasticity;
+      /// Without softening the strength; with it the peak strength.
+      Strength peak_strength;
+      /// The residual strength (softening only).
+      Strength residual_strength;
+      bool     softening = false;
+      /// The range of kappa over which the strength softens.
+      double softening_start = 0;
+      double softening_end   = 0;
 
       /**
        * A candidate active set with what depends only on the material:
@@ -191,22 +258,50 @@ namespace MPM
         bool                                 corner_defined = false;
         std::array<double, 3>                corner{};
       };
-      std::vector<CandidateSet> candidate_sets;
+
+      /**
+       * The admissible set of one strength: the six surfaces
+       * f_k = a_k . s - b_k in the sorted principal frame, their elastic
+       * return directions r_k = D n_k (n_k the flow direction) and the
+       * prepared candidate sets.
+       */
+      struct YieldSurfaces
+      {
+        std::array<std::array<double, 3>, 6> gradient;
+        std::array<std::array<double, 3>, 6> return_direction;
+        std::array<double, 6>                bound;
+        double                               tension_cutoff = 0;
+        /**
+         * For a return to plane k alone, the plastic shear strain per unit
+         * multiplier: the stress change is dgamma r_k, so the increment
+         * sqrt(2/3 |dev(s_trial - s)|^2) / (2 G) is |dgamma| times this
+         * constant. Saves the square root at the end of most returns
+         * (with it, the accumulation of a state that nothing else reads
+         * was a fifth of the model's time in the flume).
+         */
+        std::array<double, 6> shear_strain_per_multiplier{};
+        /// In the order of candidate_topology(); empty if not prepared.
+        std::vector<CandidateSet> candidate_sets;
+
+        /**
+         * The value of plane @p k at principal stresses @p x:
+         * f_k(x) = a_k . x - bound_k (positive outside).
+         */
+        double
+        plane_value(const unsigned int k, const std::array<double, 3> &x) const
+        {
+          return gradient[k][0] * x[0] + gradient[k][1] * x[1] +
+                 gradient[k][2] * x[2] - bound[k];
+        }
+      };
+
+      /// The prepared surfaces: of the strength without softening, else of
+      /// the peak strength.
+      YieldSurfaces peak;
+      /// The prepared surfaces of the residual strength (softening only).
+      YieldSurfaces residual;
       /// 1 / (2 G), for the deviatoric plastic strain.
       double inverse_two_shear_modulus = 0;
-      /**
-       * For a return to plane k alone, the plastic shear strain per unit
-       * multiplier: the stress change is dgamma r_k, so the increment
-       * sqrt(2/3 |dev(s_trial - s)|^2) / (2 G) is |dgamma| times this
-       * constant. Saves
-       * the square root at the end of most returns (with it, the
-       * accumulation of a state that nothing else reads was a fifth of
-       * the model's time in the flume).
-       */
-      std::array<double, 6> shear_strain_per_multiplier{};
-
-      void
-      setup_surfaces();
     };
   } // namespace MaterialModels
 } // namespace MPM
