@@ -183,11 +183,12 @@ namespace MPM
       // The cone return would cross the cap (or only the cap is violated):
       // the mean stress goes to T, the deviator stays if it fits under the
       // cone there, else it shrinks to the edge (the apex for T = c
-      // cot(phi)). Both multipliers of the edge are then non-negative: the
-      // cone's because root > edge_root_j2, the cap's because the cone
+      // cot(phi), where a hydrostatic trial stress counts as an apex
+      // return). Both multipliers of the edge are then non-negative: the
+      // cone's because root >= edge_root_j2, the cap's because the cone
       // return alone would have ended above T.
       mean_stress = tension_cutoff;
-      if (root <= edge_root_j2)
+      if (root < edge_root_j2)
         return Return::tension_cap;
       root_j2 = edge_root_j2;
       return Return::cap_edge;
