@@ -769,8 +769,8 @@ namespace
     };
     // Tolerance 1e-6: the limit is approached exponentially as the zz
     // stress settles (the non-associated and the compression-fit cases
-    // are still 3e-4 and 7e-3 away at eps_yy = 0.1, 3e-7 and 5e-9 at 0.2);
-    // at 0.4 the remaining difference is rounding.
+    // are still 3e-4 and 7e-3 away at eps_yy = -0.1, 5e-7 and 5e-9 at -0.2);
+    // at -0.4 the remaining difference is rounding.
     for (const Case &c : {Case{"plane strain", 30., 1e-6},
                          Case{"plane strain", 0., 1e-6},
                          Case{"compression", 30., 1e-6}})

@@ -46,9 +46,13 @@ namespace MPM
      *   extension, less than it elsewhere;
      * - plane strain: eta = 3 tan(phi) / sqrt(9 + 12 tan^2(phi)),
      *   xi = 3 / sqrt(9 + 12 tan^2(phi)): the Mohr-Coulomb plane-strain
-     *   collapse load for associated flow (psi = phi); for psi < phi the
-     *   plane-strain limit lies below the Mohr-Coulomb one
-     *   (doc/drucker_prager_section.md gives the factor).
+     *   collapse load for associated flow (psi = phi). In general a
+     *   plane-strain limit has the Mohr circle radius R = k (xi c / eta -
+     *   sigma_c), k = eta sqrt(1 - eta_bar^2 / 3) / (1 - eta eta_bar / 3),
+     *   against Mohr-Coulomb's k = sin(phi): for psi < phi the cone is
+     *   weaker (psi = 0: k = eta, 5 % less sigma_1 / sigma_3 at phi = 30),
+     *   and the outer cone is much stronger (no plane-strain limit at all
+     *   for phi above 36.9 degrees with associated flow).
      * Every fit puts the apex at c cot(phi), where the Mohr-Coulomb apex
      * lies.
      *
