@@ -2,7 +2,7 @@
 // nanoseconds per call, on a realistic mix of elastic and plastic states:
 // the figure to compare models by (doc/drucker_prager_section.md).
 //
-// Usage: material_model_benchmark case.prm [points (default 50000)]
+// Usage: material_model_benchmark case.prm [points (default 50000)] [3d]
 //
 // case.prm sets 'Materials' (the first material of the list, or the one
 // named by 'Material point driver/Material', is the one timed) and
@@ -26,6 +26,11 @@
 // with the fraction of points whose update was plastic (its stress differs
 // from the elastic trial stress, with the elastic constants probed from
 // the model).
+//
+// With '3d' every increment also gets out-of-plane shear noise (yz, xz),
+// so that the stresses are general 3D ones: what a 3D run costs a model
+// that needs principal stresses (Mohr-Coulomb's eigenvectors) and does not
+// cost one that needs only invariants (Drucker-Prager).
 //
 // Why the median: the virtual machines this code runs on drift by up to
 // 25 % within minutes (mohr_coulomb_benchmark.cc); compare models from
@@ -80,12 +85,13 @@ main(int argc, char **argv)
 {
   if (argc < 2)
     {
-      std::cerr << "usage: material_model_benchmark case.prm [points]\n";
+      std::cerr << "usage: material_model_benchmark case.prm [points] [3d]\n";
       return 1;
     }
   const std::string  file     = argv[1];
   const unsigned int n_points =
     argc > 2 ? static_cast<unsigned int>(std::atof(argv[2])) : 50000;
+  const bool three_d = argc > 3 && std::string(argv[3]) == "3d";
 
   std::ifstream in(file);
   if (!in)
@@ -154,9 +160,16 @@ main(int argc, char **argv)
         1.5 * strain_scale / n_load * signed_unit(generator);
       const double noise = 0.1 * 3 * strain_scale / n_load;
       const auto   next  = [&]() {
-        return plane_strain(0.5 * volumetric + noise * normal(generator),
-                            0.5 * volumetric + noise * normal(generator),
-                            shear + noise * normal(generator));
+        SymmetricTensor<2, 3> e =
+          plane_strain(0.5 * volumetric + noise * normal(generator),
+                       0.5 * volumetric + noise * normal(generator),
+                       shear + noise * normal(generator));
+        if (three_d)
+          {
+            e[1][2] = noise * normal(generator);
+            e[0][2] = noise * normal(generator);
+          }
+        return e;
       };
       double *state = &states[std::size_t(i) * width];
       model.initialize_state(ArrayView<double>(state, n_state));
@@ -167,10 +180,15 @@ main(int argc, char **argv)
       increments[i] = next();
       if (unit(generator) < 0.5)
         {
-          // Same size, random plane-strain direction.
+          // Same size, random direction (plane strain unless 3d).
           const double size = increments[i].norm();
           SymmetricTensor<2, 3> e =
             plane_strain(normal(generator), normal(generator), normal(generator));
+          if (three_d)
+            {
+              e[1][2] = normal(generator);
+              e[0][2] = normal(generator);
+            }
           increments[i] = e * (size / e.norm());
         }
     }
@@ -217,7 +235,7 @@ main(int argc, char **argv)
   std::cout << "material model benchmark: " << file << ", material '"
             << driver.material().name << "', " << n_points
             << " points from p0 = " << p0 << " Pa, " << n_load
-            << " plane-strain increments each\n"
+            << (three_d ? " 3D" : " plane-strain") << " increments each\n"
             << std::fixed << std::setprecision(1)
             << "plastic updates in the timed increment: "
             << 100. * n_plastic / n_points << " %\n"

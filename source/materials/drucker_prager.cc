@@ -150,9 +150,9 @@ namespace MPM
     }
 
 
-    DruckerPrager::Return
-    DruckerPrager::return_invariants(double &mean_stress,
-                                     double &root_j2) const
+    inline DEAL_II_ALWAYS_INLINE DruckerPrager::Return
+    DruckerPrager::return_invariants_inline(double &mean_stress,
+                                            double &root_j2) const
     {
       const double mean = mean_stress;
       const double root = root_j2;
@@ -195,6 +195,14 @@ namespace MPM
     }
 
 
+    DruckerPrager::Return
+    DruckerPrager::return_invariants(double &mean_stress,
+                                     double &root_j2) const
+    {
+      return return_invariants_inline(mean_stress, root_j2);
+    }
+
+
     void
     DruckerPrager::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                  SymmetricTensor<2, 3>       &stress,
@@ -220,7 +228,7 @@ namespace MPM
       const double root = std::sqrt(j2);
 
       double new_mean = mean, new_root = root;
-      if (return_invariants(new_mean, new_root) == Return::elastic)
+      if (return_invariants_inline(new_mean, new_root) == Return::elastic)
         {
           stress = trial;
           return;

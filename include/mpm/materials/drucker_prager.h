@@ -185,6 +185,15 @@ namespace MPM
       cone_coefficients(const Fit fit, const double angle);
 
     private:
+      /**
+       * The body of return_invariants(), inlined into update_stress(): the
+       * public function is exported from the shared library and so called
+       * through the PLT with its arguments in memory, which made the
+       * Drucker-Prager update slower than the Mohr-Coulomb one.
+       */
+      inline Return
+      return_invariants_inline(double &mean_stress, double &root_j2) const;
+
       IsotropicElasticity elasticity;
       Fit                 fit            = Fit::plane_strain;
       double              friction_angle = 0; // radians
