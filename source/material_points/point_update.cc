@@ -84,6 +84,15 @@ namespace MPM
                                    ArrayView<double>(props + Layout::state,
                                                      n_state));
     write_symmetric_tensor(stress, &props[Layout::stress]);
+    // The stiffness at the end of this step is the one of the next step's
+    // time step. Only for such materials: the others pay one branch.
+    if (material.state_dependent_stiffness)
+      max_state_wave_speed2 =
+        std::max(max_state_wave_speed2,
+                 material.model->p_wave_modulus(
+                   stress,
+                   ArrayView<const double>(props + Layout::state, n_state)) /
+                   material.density);
     write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +
                              strain_increment,
                            &props[Layout::strain]);

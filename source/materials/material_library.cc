@@ -97,6 +97,7 @@ namespace MPM
                              (message.rfind(model + "/", 0) == 0 ? "/" : ": ") +
                              message);
           }
+        m.state_dependent_stiffness = m.model->stiffness_depends_on_state();
         materials.push_back(std::move(m));
         prm.leave_subsection();
       }
@@ -136,6 +137,27 @@ namespace MPM
     double c = 0;
     for (const auto &m : materials)
       c = std::max(c, m.wave_speed());
+    return c;
+  }
+
+
+  bool
+  MaterialLibrary::has_state_dependent_stiffness() const
+  {
+    for (const auto &m : materials)
+      if (m.state_dependent_stiffness)
+        return true;
+    return false;
+  }
+
+
+  double
+  MaterialLibrary::max_constant_wave_speed() const
+  {
+    double c = 0;
+    for (const auto &m : materials)
+      if (!m.state_dependent_stiffness)
+        c = std::max(c, m.wave_speed());
     return c;
   }
 } // namespace MPM

@@ -126,6 +126,8 @@ namespace MPM
 
     const auto stats = compute_statistics();
     max_point_speed  = stats.max_speed;
+    if (materials.has_state_dependent_stiffness())
+      max_state_wave_speed = compute_max_state_wave_speed();
     stability_monitor.initialize(stats, boundary_conditions.does_work());
     if (checkpointing.resume())
       {
@@ -199,10 +201,16 @@ namespace MPM
                       "the grid-to-particle pass of the step before sets; "
                       "it was set for step " +
                       std::to_string(max_point_speed_step) + "."));
+    // With a state-dependent stiffness (Cam-Clay), those materials' wave
+    // speed is the largest over their points at the start of the step.
+    const double wave_speed =
+      materials.has_state_dependent_stiffness() ?
+        std::max(materials.max_constant_wave_speed(), max_state_wave_speed) :
+        materials.max_wave_speed();
     if (time_stepping.adaptive)
       dt = std::min(time_stepping.maximum_time_step,
                     time_stepping.cfl_number * active_cell_size /
-                      (materials.max_wave_speed() + max_point_speed));
+                      (wave_speed + max_point_speed));
     // Land on the end time exactly rather than overshoot it.
     if (time + dt > effective_end_time(time_stepping.end_time))
       dt = time_stepping.end_time - time;
@@ -278,6 +286,10 @@ namespace MPM
         weights->update_stress(nodal.velocity_new,
                                transfer.apic() != nullptr);
       }
+    // For the next step's time step, like the largest point speed.
+    if (materials.has_state_dependent_stiffness())
+      max_state_wave_speed = Utilities::MPI::max(
+        point_update.take_max_state_wave_speed(), mpi_communicator);
     time += time_step;
     ++step;
     relocate_points();
@@ -400,6 +412,11 @@ namespace MPM
            << " postprocessor(s)\n";
     for (const auto &warning : warnings)
       report << "# warning: " << warning << '\n';
+    // Only in scenes with such a material: every other report is unchanged.
+    if (materials.has_state_dependent_stiffness())
+      report << "# state-dependent stiffness: " << step
+             << " steps; largest P-wave speed of those points at the end "
+             << max_state_wave_speed << " m/s\n";
     for (auto &p : postprocessors)
       p->write_report(*this, report);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

@@ -42,9 +42,10 @@ namespace MPM
       Utilities::MPI::sum(lost_energy, mpi_communicator);
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
-    // 2: the removed points' energy appended; 3: the walls' contact state
-    // (formats 1 and 2 are still read).
-    const unsigned int  format      = 3;
+    // 2: the removed points' energy appended; 3: the walls' contact state;
+    // 4: the largest state-dependent wave speed (formats 1 to 3 are still
+    // read).
+    const unsigned int  format      = 4;
     const unsigned int  space_dim   = dim;
     std::uint64_t       stats_bytes = 0;
     stats_bytes = statistics_file.length();
@@ -69,7 +70,7 @@ namespace MPM
          << time_step << output_index << max_point_speed << removed_points
          << removed_mass << n_repartitions << stats_bytes << output_writer
          << postprocessor_names << postprocessor_states << removed_energy
-         << contact[0] << contact[1];
+         << contact[0] << contact[1] << max_state_wave_speed;
     }
     return state.str();
   }
@@ -88,7 +89,7 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format >= 1 && format <= 3 && space_dim == dim,
+    check_input(format >= 1 && format <= 4 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -111,6 +112,9 @@ namespace MPM
     typename BoundaryConditions<dim>::ContactLocations contact;
     if (format >= 3)
       ar >> contact[0] >> contact[1];
+    // Older checkpoints: the value the set-up computed from the points.
+    if (format >= 4)
+      ar >> max_state_wave_speed;
     boundary_conditions.set_contact(contact);
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "

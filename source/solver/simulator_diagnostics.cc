@@ -30,6 +30,29 @@ namespace MPM
 
 
   template <int dim>
+  double
+  Simulator<dim>::compute_max_state_wave_speed() const
+  {
+    using Layout               = PropertyLayout<dim>;
+    const unsigned int n_state = materials.max_n_state_variables();
+    double             c       = 0;
+    for (const auto &point : particle_handler)
+      {
+        const auto      props = point.get_properties();
+        const Material &material =
+          materials[static_cast<unsigned int>(props[Layout::material_id])];
+        if (material.state_dependent_stiffness)
+          c = std::max(c,
+                       material.wave_speed(
+                         read_symmetric_tensor(&props[Layout::stress]),
+                         ArrayView<const double>(&props[Layout::state],
+                                                 n_state)));
+      }
+    return Utilities::MPI::max(c, mpi_communicator);
+  }
+
+
+  template <int dim>
   void
   Simulator<dim>::stop_on_blow_up(const std::string &reason,
                                   const bool         during_step)

@@ -11,6 +11,7 @@
 #include <mpm/solver/time_stepping.h>
 #include <mpm/transfer/velocity_transfer.h>
 
+#include <cmath>
 #include <string>
 
 namespace MPM
@@ -64,9 +65,24 @@ namespace MPM
             double                                                   &v_max2);
 
     /// One point's strain, stress (its material model) and volume from
-    /// its velocity gradient @p grad_v over the time step.
+    /// its velocity gradient @p grad_v over the time step. For a material
+    /// whose stiffness depends on the state, the point's new P-wave speed
+    /// enters take_max_state_wave_speed().
     void
     update_stress(double *props, const Tensor<2, dim> &grad_v) const;
+
+    /**
+     * The largest P-wave speed, after their stress update, of this rank's
+     * points whose material's stiffness depends on the state (0 if none),
+     * since the last call; resets it. The next step's time step needs it.
+     */
+    double
+    take_max_state_wave_speed()
+    {
+      const double c = std::sqrt(max_state_wave_speed2);
+      max_state_wave_speed2 = 0;
+      return c;
+    }
 
     /// Whether the points of a cell share their volumetric strain rate
     /// ('Time stepping/Volumetric strain averaging = cell'): then the
@@ -103,6 +119,10 @@ namespace MPM
     double                       time_step = 0;
     double                       flip      = 0;
     std::string                  bad_point;
+    /// The square of take_max_state_wave_speed(); mutable because the
+    /// stress update is const (the particle-grid passes hold the updater
+    /// as const).
+    mutable double               max_state_wave_speed2 = 0;
   };
 } // namespace MPM
 

@@ -6,6 +6,7 @@
 #include <mpm/materials/material_model.h>
 #include <mpm/materials/objective_stress_rate.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,12 +23,26 @@ namespace MPM
     std::string                    name;
     double                         density = 0;
     std::unique_ptr<MaterialModel> model;
+    /// model->stiffness_depends_on_state(), asked once when parsed: the
+    /// stress update reads it for every point.
+    bool state_dependent_stiffness = false;
 
     /**
      * Elastic P-wave speed sqrt((lambda + 2 mu) / rho), for the CFL limit.
      */
     double
     wave_speed() const;
+
+    /**
+     * The P-wave speed at a point's @p stress and @p state, for a model
+     * whose stiffness depends on them.
+     */
+    double
+    wave_speed(const SymmetricTensor<2, 3>   &stress,
+               const ArrayView<const double> &state) const
+    {
+      return std::sqrt(model->p_wave_modulus(stress, state) / density);
+    }
   };
 
 
@@ -90,10 +105,28 @@ namespace MPM
     max_n_state_variables() const;
 
     /**
-     * Largest elastic wave speed of all materials.
+     * Largest elastic wave speed of all materials (for a material whose
+     * stiffness depends on the state, the model's estimate
+     * p_wave_modulus()).
      */
     double
     max_wave_speed() const;
+
+    /**
+     * Whether a material's stiffness depends on the points' stress and
+     * state: then the time step takes, for those materials, the largest
+     * wave speed over their points (Simulator) and the others'
+     * max_constant_wave_speed().
+     */
+    bool
+    has_state_dependent_stiffness() const;
+
+    /**
+     * Largest elastic wave speed of the materials whose stiffness does not
+     * depend on the state; max_wave_speed() if there are only such.
+     */
+    double
+    max_constant_wave_speed() const;
 
     /**
      * One point's stress update over a time step @p dt from its velocity

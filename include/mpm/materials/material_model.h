@@ -70,6 +70,33 @@ namespace MPM
     p_wave_modulus() const = 0;
 
     /**
+     * Whether the P-wave modulus depends on the point's stress and state
+     * (a pressure-dependent stiffness such as Cam-Clay's K = v p / kappa).
+     * Then the time step takes the largest wave speed over the points of
+     * the material (gathered in the stress update) rather than
+     * p_wave_modulus(); the points of the other materials cost nothing.
+     */
+    virtual bool
+    stiffness_depends_on_state() const
+    {
+      return false;
+    }
+
+    /**
+     * The P-wave modulus at a point's @p stress and @p state variables;
+     * p_wave_modulus() unless the model overrides
+     * p_wave_modulus_at_state(). Not virtual itself, so that a model that
+     * only overrides p_wave_modulus() does not hide it
+     * (-Woverloaded-virtual).
+     */
+    double
+    p_wave_modulus(const SymmetricTensor<2, 3>   &stress,
+                   const ArrayView<const double> &state) const
+    {
+      return p_wave_modulus_at_state(stress, state);
+    }
+
+    /**
      * Coefficient of earth pressure at rest used by the geostatic initial
      * stress when the user does not give one; for an elastic solid in
      * uniaxial strain nu / (1 - nu).
@@ -93,6 +120,20 @@ namespace MPM
     initialize_state(const ArrayView<double> &state) const
     {
       (void)state;
+    }
+
+  protected:
+    /**
+     * What p_wave_modulus(stress, state) returns; models whose
+     * stiffness_depends_on_state() override it.
+     */
+    virtual double
+    p_wave_modulus_at_state(const SymmetricTensor<2, 3>   &stress,
+                            const ArrayView<const double> &state) const
+    {
+      (void)stress;
+      (void)state;
+      return p_wave_modulus();
     }
   };
 

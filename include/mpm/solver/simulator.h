@@ -257,6 +257,12 @@ namespace MPM
     void
     set_max_point_speed(const double v_max2);
 
+    /// The largest P-wave speed on all ranks over the points whose
+    /// material's stiffness depends on the state, from their stress and
+    /// state now (the set-up's, for step 0). Collective.
+    double
+    compute_max_state_wave_speed() const;
+
     void
     relocate_points();
 
@@ -316,6 +322,12 @@ namespace MPM
     /// previous step's grid-to-particle pass, or by the set-up.
     double       max_point_speed      = 0;
     unsigned int max_point_speed_step = 0;
+    /// The largest P-wave speed over the points of materials whose
+    /// stiffness depends on the state, at the start of the same step
+    /// (0 if there are none): left by the previous step's stress update
+    /// (PointUpdate::take_max_state_wave_speed()) or by the set-up; kept in
+    /// the checkpoint.
+    double       max_state_wave_speed = 0;
     /// Shortest edge among the cells that hold points this step (all ranks).
     double       active_cell_size = 0;
     unsigned int output_index    = 0;
