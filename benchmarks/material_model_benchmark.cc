@@ -1,6 +1,6 @@
 // Cost of one stress update of any registered material model, in
 // nanoseconds per call, on a realistic mix of elastic and plastic states:
-// the figure to compare models by (doc/drucker_prager_section.md).
+// the figure to compare models by (doc/materials.md, "Cost per stress update").
 //
 // Usage: material_model_benchmark case.prm [points (default 50000)] [3d]
 //

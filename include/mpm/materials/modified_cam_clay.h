@@ -28,7 +28,7 @@ namespace MPM
      * can produce or dissipate a little energy.
      *
      * The stress update (update_stress(), details in
-     * doc/cam_clay_section.md):
+     * doc/materials.md, "Modified Cam-Clay"):
      * - the elastic predictor integrates K = v p / kappa exactly over the
      *   step (v fixed at its start): p = p_n exp(v d eps_v / kappa),
      *   compression positive, and s = s_n + 2 G de with G at the start of
