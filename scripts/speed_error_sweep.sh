@@ -97,7 +97,8 @@ sliding_block() {
 
 flume() {
   # Shipped (prm/flume_usgs.prm): 5 mm mesh, 3 x 3 points per cell, CFL
-  # 0.5, MUSL, PIC. No analytical reference: the error is the distance of
+  # 0.5, MUSL, the FLIP/PIC blend (FLIP fraction 0.98 per 3.3e-5 s). No
+  # analytical reference: the error is the distance of
   # the final front from that of the finest run (CFL 0.25), which runs
   # first and is not itself plotted.
   local prm="$MPM_ROOT/prm/flume_usgs.prm" reference front_of
