@@ -8,7 +8,7 @@ namespace MPM
   {
     prm.declare_entry(
       "Objective stress rate",
-      "none",
+      "jaumann",
       Patterns::Selection("jaumann|none"),
       "How a point's stress follows its rotation before its model adds the "
       "step's increment. 'jaumann': the Jaumann rate, integrated by the "
@@ -16,7 +16,8 @@ namespace MPM
       "body that rotates carries its stress with it. 'none': the stress "
       "components are integrated in the fixed axes (not objective: a "
       "rotating stressed body keeps its stress fixed in space). "
-      "doc/materials.md has the simple-shear check of both.");
+      "doc/materials.md has the simple-shear check of both and what the "
+      "choice changes in the shipped scenes.");
   }
 
 

@@ -570,7 +570,10 @@ namespace
               const unsigned int n_steps)
   {
     std::ostringstream s;
+    // The closed forms below are of the model alone, in fixed axes: no
+    // objective rotation of the stress (simple shear rotates it).
     s << std::setprecision(17) << "subsection Materials\n"
+      << "  set Objective stress rate = none\n"
       << "  set List of materials = sand\n"
       << "  subsection sand\n"
       << "    set Density = 2000\n"
