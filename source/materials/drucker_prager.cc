@@ -1,5 +1,7 @@
 #include <mpm/base/input_error.h>
+#include <mpm/base/plugin_registry.h>
 #include <mpm/materials/drucker_prager.h>
+#include <mpm/materials/frictional_strength.h>
 
 #include <algorithm>
 #include <cmath>
@@ -104,38 +106,23 @@ namespace MPM
       const double psi_degrees = prm.get_double("Dilation angle");
       cohesion                 = prm.get_double("Cohesion");
       tension_cutoff           = prm.get_double("Tension cutoff");
-      const std::string fit_name = prm.get("Fit to Mohr-Coulomb");
-      fit = fit_name == "compression" ? Fit::compression :
-            fit_name == "extension"   ? Fit::extension :
-                                        Fit::plane_strain;
-
-      check_input(phi_degrees > 0 && phi_degrees < 90,
-                  name_of("Friction angle") + " = " +
-                    std::to_string(phi_degrees) +
-                    " degrees: must lie in (0, 90).");
-      check_input(psi_degrees >= 0 && psi_degrees <= phi_degrees,
-                  name_of("Dilation angle") + " = " +
-                    std::to_string(psi_degrees) +
-                    " degrees: must lie in [0, friction angle = " +
-                    std::to_string(phi_degrees) + "].");
-      check_input(cohesion >= 0,
-                  name_of("Cohesion") + " = " + std::to_string(cohesion) +
-                    " Pa: must be >= 0.");
+      fit = select_choice<Fit>(prm.get("Fit to Mohr-Coulomb"),
+                               {{"compression", Fit::compression},
+                                {"extension", Fit::extension},
+                                {"plane strain", Fit::plane_strain}},
+                               name_of("Fit to Mohr-Coulomb"));
+      check_frictional_strength("drucker prager",
+                                phi_degrees,
+                                psi_degrees,
+                                cohesion,
+                                tension_cutoff,
+                                "the apex of the Drucker-Prager cone");
 
       friction_angle = phi_degrees * degree;
       std::tie(eta, xi) = cone_coefficients(fit, friction_angle);
       eta_bar           = cone_coefficients(fit, psi_degrees * degree).first;
       xi_c              = xi * cohesion;
 
-      // Above the apex the cap would never be reached: a cutoff there is
-      // an input mistake, not a harmless no-op. Rounding in a value copied
-      // from a calculator is accepted and clamped.
-      const double apex = cohesion / std::tan(friction_angle);
-      check_input(
-        tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
-        name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
-          " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
-          " Pa], the apex of the Drucker-Prager cone.");
       // xi c / eta is the apex as the return sees it (equal to c cot(phi)
       // up to rounding); clamping to it makes the edge radius below
       // non-negative and zero at the apex.

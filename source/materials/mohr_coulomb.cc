@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/materials/frictional_strength.h>
 #include <mpm/materials/mohr_coulomb.h>
 
 #include <algorithm>
@@ -173,33 +174,17 @@ namespace MPM
       const double cohesion    = prm.get_double("Cohesion");
       const double tension_cutoff = prm.get_double("Tension cutoff");
 
-      check_input(phi_degrees > 0 && phi_degrees < 90,
-                  name_of("Friction angle") + " = " +
-                    std::to_string(phi_degrees) +
-                    " degrees: must lie in (0, 90).");
-      check_input(psi_degrees >= 0 && psi_degrees <= phi_degrees,
-                  name_of("Dilation angle") + " = " +
-                    std::to_string(psi_degrees) +
-                    " degrees: must lie in [0, friction angle = " +
-                    std::to_string(phi_degrees) + "].");
-      check_input(cohesion >= 0,
-                  name_of("Cohesion") + " = " + std::to_string(cohesion) +
-                    " Pa: must be >= 0.");
+      check_frictional_strength("mohr coulomb",
+                                phi_degrees,
+                                psi_degrees,
+                                cohesion,
+                                tension_cutoff,
+                                "the apex of the Mohr-Coulomb surface");
 
       peak_strength.friction_angle = phi_degrees * degree;
       peak_strength.dilation_angle = psi_degrees * degree;
       peak_strength.cohesion       = cohesion;
-
-      // Above c cot(phi) the tension planes would lie outside the apex of
-      // the Mohr-Coulomb pyramid and never be reached: a cutoff there is an
-      // input mistake, not a harmless no-op. Rounding in a value copied
-      // from a calculator is accepted and clamped.
       const double apex = cohesion / std::tan(peak_strength.friction_angle);
-      check_input(
-        tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
-        name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
-          " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
-          " Pa], the apex of the Mohr-Coulomb surface.");
       peak_strength.tension_cutoff = std::min(tension_cutoff, apex);
 
       prm.enter_subsection("Strain softening");

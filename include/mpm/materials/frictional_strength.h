@@ -1,0 +1,57 @@
+#ifndef mpm_materials_frictional_strength_h
+#define mpm_materials_frictional_strength_h
+
+#include <mpm/base/input_error.h>
+
+#include <cmath>
+#include <string>
+
+namespace MPM
+{
+  namespace MaterialModels
+  {
+    /**
+     * The input checks of the Mohr-Coulomb strength parameters, which every
+     * frictional model reads ('mohr coulomb', 'drucker prager'): friction
+     * angle phi in (0, 90) degrees, dilation angle psi in [0, phi],
+     * cohesion c >= 0, and a tension cutoff T in [0, c cot(phi)] (rounding
+     * in a value copied from a calculator accepted: the caller clamps).
+     * Above c cot(phi) the tension surface would lie beyond the apex and
+     * never be reached: an input mistake, not a harmless no-op. Errors
+     * name "<model>/<entry>"; @p apex_description says what c cot(phi) is
+     * for the model.
+     */
+    inline void
+    check_frictional_strength(const std::string &model,
+                              const double       phi_degrees,
+                              const double       psi_degrees,
+                              const double       cohesion,
+                              const double       tension_cutoff,
+                              const std::string &apex_description)
+    {
+      const auto name_of = [&](const std::string &entry) {
+        return model + "/" + entry;
+      };
+      check_input(phi_degrees > 0 && phi_degrees < 90,
+                  name_of("Friction angle") + " = " +
+                    std::to_string(phi_degrees) +
+                    " degrees: must lie in (0, 90).");
+      check_input(psi_degrees >= 0 && psi_degrees <= phi_degrees,
+                  name_of("Dilation angle") + " = " +
+                    std::to_string(psi_degrees) +
+                    " degrees: must lie in [0, friction angle = " +
+                    std::to_string(phi_degrees) + "].");
+      check_input(cohesion >= 0,
+                  name_of("Cohesion") + " = " + std::to_string(cohesion) +
+                    " Pa: must be >= 0.");
+      const double apex = cohesion / std::tan(phi_degrees * (M_PI / 180.));
+      check_input(
+        tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
+        name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
+          " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
+          " Pa], " + apex_description + ".");
+    }
+  } // namespace MaterialModels
+} // namespace MPM
+
+#endif
