@@ -104,8 +104,8 @@ namespace MPM
       elasticity.parse_parameters(prm, "drucker prager");
       const double phi_degrees = prm.get_double("Friction angle");
       const double psi_degrees = prm.get_double("Dilation angle");
-      cohesion                 = prm.get_double("Cohesion");
-      tension_cutoff           = prm.get_double("Tension cutoff");
+      const double cohesion    = prm.get_double("Cohesion");
+      const double given_tension_cutoff = prm.get_double("Tension cutoff");
       fit = select_choice<Fit>(prm.get("Fit to Mohr-Coulomb"),
                                {{"compression", Fit::compression},
                                 {"extension", Fit::extension},
@@ -115,25 +115,50 @@ namespace MPM
                                 phi_degrees,
                                 psi_degrees,
                                 cohesion,
-                                tension_cutoff,
+                                given_tension_cutoff,
                                 "the apex of the Drucker-Prager cone");
 
       friction_angle = phi_degrees * degree;
-      std::tie(eta, xi) = cone_coefficients(fit, friction_angle);
-      eta_bar           = cone_coefficients(fit, psi_degrees * degree).first;
-      xi_c              = xi * cohesion;
-
-      // xi c / eta is the apex as the return sees it (equal to c cot(phi)
-      // up to rounding); clamping to it makes the edge radius below
-      // non-negative and zero at the apex.
-      tension_cutoff = std::min(tension_cutoff, xi_c / eta);
-      edge_root_j2   = std::max(0., xi_c - eta * tension_cutoff);
+      given_strength.friction_angle = friction_angle;
+      given_strength.dilation_angle = psi_degrees * degree;
+      given_strength.cohesion       = cohesion;
+      given_strength.tension_cutoff = given_tension_cutoff;
+      strength_reduction            = 1;
+      prepare_cone(given_strength);
 
       bulk_modulus = elasticity.lambda + 2. / 3. * elasticity.shear_modulus;
       cone_multiplier_factor =
         1. / (elasticity.shear_modulus + bulk_modulus * eta * eta_bar);
       shear_strain_per_root_j2 =
         1. / (std::sqrt(3.) * elasticity.shear_modulus);
+    }
+
+
+    void
+    DruckerPrager::prepare_cone(const FrictionalStrength &strength)
+    {
+      std::tie(eta, xi) = cone_coefficients(fit, strength.friction_angle);
+      eta_bar = cone_coefficients(fit, strength.dilation_angle).first;
+      xi_c    = xi * strength.cohesion;
+
+      // xi c / eta is the apex as the return sees it (equal to c cot(phi)
+      // up to rounding); clamping to it makes the edge radius below
+      // non-negative and zero at the apex.
+      tension_cutoff = std::min(strength.tension_cutoff, xi_c / eta);
+      edge_root_j2   = std::max(0., xi_c - eta * tension_cutoff);
+    }
+
+
+    void
+    DruckerPrager::set_strength_reduction(const double factor)
+    {
+      Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
+      if (factor == strength_reduction)
+        return;
+      strength_reduction = factor;
+      prepare_cone(given_strength.reduced(factor));
+      cone_multiplier_factor =
+        1. / (elasticity.shear_modulus + bulk_modulus * eta * eta_bar);
     }
 
 

@@ -1,8 +1,10 @@
+#include <mpm/base/function_input.h>
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 #include <mpm/materials/material_library.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace MPM
 {
@@ -47,6 +49,22 @@ namespace MPM
     declare_name_list(prm);
     prm.enter_subsection("Materials");
     ObjectiveStressRate::declare_parameters(prm);
+    prm.declare_entry(
+      "Strength reduction factor",
+      "1",
+      Patterns::Anything(),
+      "The shear strength reduction of slope stability analysis: a "
+      "function of time t (s), F(t) > 0, by which the cohesion c and "
+      "tan(phi) of every material with a frictional strength ('mohr "
+      "coulomb', 'drucker prager'; peak and residual strength of a "
+      "softening one) are divided from the step that starts at t; the "
+      "dilation angle is kept unless it exceeds the reduced friction angle. "
+      "Other models are not changed. A constant F run after run gives the "
+      "factor of safety as the smallest F at which the slope fails "
+      "(scripts/strength_reduction.sh); a ramp such as '1 + 0.05 * t' "
+      "finds it in one run if the ramp is slow against the slope's "
+      "response; '1 + 0.5 * (t >= 2)' releases a slope settled over 2 s. "
+      "Constants pi and e are known.");
     for (const auto &name : names)
       {
         prm.enter_subsection(name);
@@ -73,6 +91,22 @@ namespace MPM
     const auto names = read_name_list(prm);
     prm.enter_subsection("Materials");
     stress_rate.parse_parameters(prm);
+    strength_reduction_expression = prm.get("Strength reduction factor");
+    strength_reduction.reset();
+    current_strength_reduction = 1;
+    if (Utilities::trim(strength_reduction_expression) != "1")
+      {
+        strength_reduction = std::make_unique<FunctionParser<1>>(1);
+        parse_function_or_throw(
+          "Materials/Strength reduction factor = '" +
+            strength_reduction_expression + "'",
+          [&]() {
+            strength_reduction->initialize("t",
+                                           strength_reduction_expression,
+                                           {});
+            strength_reduction->value(Point<1>());
+          });
+      }
     for (const auto &name : names)
       {
         prm.enter_subsection(name);
@@ -102,6 +136,41 @@ namespace MPM
         prm.leave_subsection();
       }
     prm.leave_subsection();
+    if (strength_reduction)
+      {
+        bool frictional = false;
+        for (const auto &m : materials)
+          frictional = frictional || m.model->has_frictional_strength();
+        check_input(frictional,
+                    "Materials/Strength reduction factor = '" +
+                      strength_reduction_expression +
+                      "', but no material has a frictional strength "
+                      "(models 'mohr coulomb', 'drucker prager'): there is "
+                      "nothing to reduce.");
+      }
+  }
+
+
+  void
+  MaterialLibrary::set_time(const double time)
+  {
+    if (!strength_reduction)
+      return;
+    const double factor = strength_reduction->value(Point<1>(time));
+    if (!(std::isfinite(factor) && factor > 0))
+      {
+        std::ostringstream message;
+        message << "Materials/Strength reduction factor = '"
+                << strength_reduction_expression << "' is " << factor
+                << " at t = " << time << " s: it must be > 0.";
+        throw InputError(message.str());
+      }
+    if (factor == current_strength_reduction)
+      return;
+    current_strength_reduction = factor;
+    for (auto &m : materials)
+      if (m.model->has_frictional_strength())
+        m.model->set_strength_reduction(factor);
   }
 
 

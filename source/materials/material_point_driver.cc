@@ -94,6 +94,9 @@ namespace MPM
   MaterialPointDriver::parse_parameters(ParameterHandler &prm)
   {
     materials.parse_parameters(prm);
+    // A strength reduction factor applies along the whole path: its value
+    // at t = 0.
+    materials.set_time(0);
     prm.enter_subsection("Material point driver");
     const std::string name = prm.get("Material");
     material_index =

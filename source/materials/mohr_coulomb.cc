@@ -234,9 +234,37 @@ namespace MPM
       prm.leave_subsection();
 
       inverse_two_shear_modulus = 0.5 / elasticity.shear_modulus;
+      given_peak_strength       = peak_strength;
+      given_residual_strength   = residual_strength;
+      strength_reduction        = 1;
       peak                      = make_surfaces(peak_strength, true);
       if (softening)
         residual = make_surfaces(residual_strength, true);
+    }
+
+
+    void
+    MohrCoulomb::set_strength_reduction(const double factor)
+    {
+      Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
+      if (factor == strength_reduction)
+        return;
+      strength_reduction = factor;
+      peak_strength      = given_peak_strength.reduced(factor);
+      peak               = make_surfaces(peak_strength, true);
+      if (softening)
+        {
+          residual_strength = given_residual_strength.reduced(factor);
+          // As in parse_parameters(): the residual tension cutoff is at
+          // most the peak one and the residual apex (which the reduction
+          // keeps in place).
+          if (factor != 1.)
+            residual_strength.tension_cutoff =
+              std::min(peak_strength.tension_cutoff,
+                       residual_strength.cohesion /
+                         std::tan(residual_strength.friction_angle));
+          residual = make_surfaces(residual_strength, true);
+        }
     }
 
 
@@ -541,6 +569,37 @@ namespace MPM
     }
 
 
+    bool
+    MohrCoulomb::is_elastic(const Strength              &strength,
+                            const std::array<double, 3> &s) const
+    {
+      // The planes and tolerance of make_surfaces() and
+      // return_principal_inline(), computed in the same order, so that the
+      // answer is the return's to the last bit.
+      const double sin_phi = std::sin(strength.friction_angle);
+      const double k = 2 * strength.cohesion * std::cos(strength.friction_angle);
+      const double tension_cutoff = strength.tension_cutoff;
+      const double scale          = std::max(
+        {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), k, tension_cutoff});
+      const double tol = relative_tolerance * scale;
+      const std::array<std::array<double, 3>, 3> shear{
+        {{{1 + sin_phi, 0, -(1 - sin_phi)}},
+         {{1 + sin_phi, -(1 - sin_phi), 0}},
+         {{0, 1 + sin_phi, -(1 - sin_phi)}}}};
+      for (const auto &a : shear)
+        if (!(a[0] * s[0] + a[1] * s[1] + a[2] * s[2] - k <= tol))
+          return false;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          std::array<double, 3> a{{0, 0, 0}};
+          a[i] = 1;
+          if (!(a[0] * s[0] + a[1] * s[1] + a[2] * s[2] - tension_cutoff <= tol))
+            return false;
+        }
+      return true;
+    }
+
+
     unsigned int
     MohrCoulomb::return_with_softening(std::array<double, 3> &s,
                                        double &plastic_shear_increment,
@@ -563,6 +622,16 @@ namespace MPM
                                        s,
                                        increment);
       };
+
+      // Most steps of a point inside the softening range are elastic: the
+      // elastic check of the return at the strength of kappa, without
+      // building that strength's surfaces (their return directions and
+      // plastic strain factors were most of a softening update's cost).
+      if (kappa > softening_start && is_elastic(strength_at(kappa), trial))
+        {
+          plastic_shear_increment = 0;
+          return 0;
+        }
 
       // Elastic, or plastic and still before the peak strain: done.
       unsigned int bits = return_at(kappa);

@@ -254,6 +254,9 @@ namespace MPM
   void
   Simulator<dim>::do_time_step()
   {
+    // The strength of this step (a strength reduction factor that
+    // depends on time).
+    materials.set_time(time);
     prepare_transfer();
     time_step = compute_time_step();
     point_update.set_time_step(time_step);

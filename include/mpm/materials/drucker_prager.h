@@ -1,6 +1,7 @@
 #ifndef mpm_materials_drucker_prager_h
 #define mpm_materials_drucker_prager_h
 
+#include <mpm/materials/frictional_strength.h>
 #include <mpm/materials/isotropic_elasticity.h>
 #include <mpm/materials/material_model.h>
 
@@ -184,6 +185,17 @@ namespace MPM
       static std::pair<double, double>
       cone_coefficients(const Fit fit, const double angle);
 
+      bool
+      has_frictional_strength() const override
+      {
+        return true;
+      }
+
+      /// Divide the strength (FrictionalStrength::reduced()) and fit the
+      /// cone to it again.
+      void
+      set_strength_reduction(const double factor) override;
+
     private:
       /**
        * The body of return_invariants(), inlined into update_stress(): the
@@ -194,13 +206,25 @@ namespace MPM
       inline Return
       return_invariants_inline(double &mean_stress, double &root_j2) const;
 
+      /**
+       * Set the cone's coefficients, tension cap and edge from @p strength
+       * (the given one or a reduced one).
+       */
+      void
+      prepare_cone(const FrictionalStrength &strength);
+
       IsotropicElasticity elasticity;
       Fit                 fit            = Fit::plane_strain;
-      double              friction_angle = 0; // radians
-      double              cohesion       = 0;
-      double              tension_cutoff = 0;
+      /// The given friction angle (radians), for K0.
+      double friction_angle = 0;
+      /// The strength as given in the parameter file.
+      FrictionalStrength given_strength;
+      /// The factor the strength is divided by.
+      double strength_reduction = 1;
+      /// The tension cap on the mean stress (of the reduced strength).
+      double tension_cutoff = 0;
 
-      /// eta, xi, eta_bar of the fit and xi c, set in parse_parameters().
+      /// eta, xi, eta_bar of the fit and xi c, set by prepare_cone().
       double eta     = 0;
       double xi      = 0;
       double eta_bar = 0;

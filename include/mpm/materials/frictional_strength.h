@@ -3,6 +3,7 @@
 
 #include <mpm/base/input_error.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -51,6 +52,42 @@ namespace MPM
           " Pa: must lie in [0, c cot(phi) = " + std::to_string(apex) +
           " Pa], " + apex_description + ".");
     }
+
+
+    /**
+     * A Mohr-Coulomb strength: friction angle phi and dilation angle psi
+     * (radians), cohesion c and tension cutoff T (Pa, T <= c cot(phi)).
+     */
+    struct FrictionalStrength
+    {
+      double friction_angle = 0;
+      double dilation_angle = 0;
+      double cohesion       = 0;
+      double tension_cutoff = 0;
+
+      /**
+       * The strength divided by the strength reduction factor @p factor
+       * (the shear strength reduction method of slope stability; Griffiths
+       * and Lane 1999): tan(phi_F) = tan(phi) / F, c_F = c / F and
+       * T_F = T / F, so that the apex c cot(phi) stays where it is. The
+       * dilation angle is kept as given unless it exceeds phi_F, where it
+       * becomes phi_F (flow never more dilatant than associated; the
+       * convention of Plaxis and FLAC; with psi = 0, as in Griffiths and
+       * Lane, it does not enter). F = 1 returns the strength bit for bit.
+       */
+      FrictionalStrength
+      reduced(const double factor) const
+      {
+        if (factor == 1.)
+          return *this;
+        FrictionalStrength r;
+        r.friction_angle = std::atan(std::tan(friction_angle) / factor);
+        r.dilation_angle = std::min(dilation_angle, r.friction_angle);
+        r.cohesion       = cohesion / factor;
+        r.tension_cutoff = tension_cutoff / factor;
+        return r;
+      }
+    };
   } // namespace MaterialModels
 } // namespace MPM
 

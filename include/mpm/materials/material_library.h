@@ -1,6 +1,7 @@
 #ifndef mpm_materials_material_library_h
 #define mpm_materials_material_library_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/materials/material_model.h>
@@ -167,9 +168,37 @@ namespace MPM
       return stress_rate;
     }
 
+    /**
+     * Set the strength of the frictional materials for the step that
+     * starts at @p time: their c and tan(phi) divided by 'Strength
+     * reduction factor' at that time (MaterialModel::set_strength_reduction();
+     * the models are told only when the factor changes). Costs nothing
+     * when the factor is the default 1.
+     */
+    void
+    set_time(const double time);
+
+    /// The strength reduction factor of the current step (1 by default).
+    double
+    strength_reduction_factor() const
+    {
+      return current_strength_reduction;
+    }
+
+    /// Whether 'Strength reduction factor' is given (not the constant 1).
+    bool
+    reduces_strength() const
+    {
+      return strength_reduction != nullptr;
+    }
+
   private:
     std::vector<Material> materials;
     ObjectiveStressRate   stress_rate;
+    /// 'Strength reduction factor' as a function of t; null for "1".
+    std::unique_ptr<FunctionParser<1>> strength_reduction;
+    std::string                        strength_reduction_expression = "1";
+    double                             current_strength_reduction    = 1;
   };
 } // namespace MPM
 

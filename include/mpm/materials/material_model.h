@@ -2,6 +2,7 @@
 #define mpm_materials_material_model_h
 
 #include <deal.II/base/array_view.h>
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
@@ -103,6 +104,32 @@ namespace MPM
      */
     virtual double
     default_k0() const = 0;
+
+    /**
+     * Whether the model's strength is a Mohr-Coulomb strength (c, phi)
+     * that set_strength_reduction() divides: 'Materials/Strength reduction
+     * factor' acts on these models and leaves the others as they are.
+     */
+    virtual bool
+    has_frictional_strength() const
+    {
+      return false;
+    }
+
+    /**
+     * From now on, use the strength divided by @p factor
+     * (FrictionalStrength::reduced(): tan(phi) / F, c / F); 1 restores the
+     * given strength exactly. Called between steps, never during a stress
+     * update, and only for a model that has_frictional_strength().
+     */
+    virtual void
+    set_strength_reduction(const double factor)
+    {
+      (void)factor;
+      Assert(false,
+             ExcMessage("set_strength_reduction() called for a model "
+                        "without a frictional strength."));
+    }
 
     virtual unsigned int
     n_state_variables() const

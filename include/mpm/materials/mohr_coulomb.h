@@ -1,6 +1,7 @@
 #ifndef mpm_materials_mohr_coulomb_h
 #define mpm_materials_mohr_coulomb_h
 
+#include <mpm/materials/frictional_strength.h>
 #include <mpm/materials/isotropic_elasticity.h>
 #include <mpm/materials/material_model.h>
 
@@ -106,6 +107,19 @@ namespace MPM
       double
       default_k0() const override;
 
+      bool
+      has_frictional_strength() const override
+      {
+        return true;
+      }
+
+      /**
+       * Divide peak and residual strength (FrictionalStrength::reduced())
+       * and prepare their surfaces again.
+       */
+      void
+      set_strength_reduction(const double factor) override;
+
       unsigned int
       n_state_variables() const override;
 
@@ -196,13 +210,16 @@ namespace MPM
                         double &first_multiplier) const;
 
       /// The strength parameters (angles in radians, stresses in Pa).
-      struct Strength
-      {
-        double friction_angle = 0;
-        double dilation_angle = 0;
-        double cohesion       = 0;
-        double tension_cutoff = 0;
-      };
+      using Strength = FrictionalStrength;
+
+      /**
+       * Whether the sorted principal stresses @p s lie inside the
+       * admissible set of @p strength: the elastic check of
+       * return_principal_inline() with the surfaces of @p strength, to the
+       * last bit, without building them.
+       */
+      bool
+      is_elastic(const Strength &strength, const std::array<double, 3> &s) const;
 
       /// The strength at accumulated plastic shear strain @p kappa.
       Strength
@@ -232,10 +249,16 @@ namespace MPM
       candidate_topology();
 
       IsotropicElasticity elasticity;
-      /// Without softening the strength; with it the peak strength.
+      /// Without softening the strength; with it the peak strength (both
+      /// divided by the strength reduction factor).
       Strength peak_strength;
-      /// The residual strength (softening only).
+      /// The residual strength (softening only), reduced like the peak.
       Strength residual_strength;
+      /// The peak and residual strengths as given in the parameter file.
+      Strength given_peak_strength;
+      Strength given_residual_strength;
+      /// The factor the strengths are divided by.
+      double strength_reduction = 1;
       bool     softening = false;
       /// The range of kappa over which the strength softens.
       double softening_start = 0;
