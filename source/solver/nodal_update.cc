@@ -33,7 +33,7 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "nodal update");
     const double       dt    = time_step;
-    const double       alpha = time_stepping.local_damping;
+    const double       alpha = time_stepping.local_damping_at(time);
     for (const unsigned int i : weights->active_dofs())
       {
         const double m = nodal.mass.local_element(i);

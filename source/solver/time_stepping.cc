@@ -1,8 +1,11 @@
 #include <deal.II/base/utilities.h>
 
+#include <mpm/base/function_input.h>
 #include <mpm/base/input_error.h>
 #include <mpm/base/plugin_registry.h>
 #include <mpm/solver/time_stepping.h>
+
+#include <sstream>
 
 namespace MPM
 {
@@ -46,12 +49,14 @@ namespace MPM
                         "(Update Stress Last), MUSL (Modified USL).");
       prm.declare_entry("Local damping",
                         "0",
-                        Patterns::Double(0, 1),
+                        Patterns::Anything(),
                         "Cundall's local non-viscous damping coefficient "
-                        "alpha: the nodal force is reduced by alpha |f| in "
-                        "the direction of the nodal velocity. For quasi-"
-                        "static problems (e.g. settling under gravity); 0 "
-                        "for dynamics.");
+                        "alpha in [0, 1): the nodal force is reduced by "
+                        "alpha |f| in the direction of the nodal velocity. "
+                        "For quasi-static problems (settling under gravity, "
+                        "strength reduction); 0 for dynamics. A number or a "
+                        "function of time t (s), e.g. '0.8 * (t < 2)' to "
+                        "settle a slope for 2 s and then release it.");
       prm.declare_entry(
         "Volumetric strain averaging",
         "none",
@@ -89,7 +94,26 @@ namespace MPM
                                             {"USL", UpdateScheme::usl},
                                             {"MUSL", UpdateScheme::musl}},
                                            "Time stepping/Update scheme");
-      local_damping = prm.get_double("Local damping");
+      const std::string damping = prm.get("Local damping");
+      local_damping_function.reset();
+      try
+        {
+          local_damping = Utilities::string_to_double(damping);
+        }
+      catch (...)
+        {
+          auto function = std::make_shared<FunctionParser<1>>(1);
+          parse_function_or_throw("Time stepping/Local damping = '" + damping +
+                                    "'",
+                                  [&]() {
+                                    function->initialize("t", damping, {});
+                                    function->value(Point<1>());
+                                  });
+          local_damping_function = function;
+          local_damping          = function->value(Point<1>());
+        }
+      local_damping_expression = damping;
+      check_local_damping(local_damping, 0);
       average_volumetric_strain =
         select_choice<bool>(prm.get("Volumetric strain averaging"),
                             {{"none", false}, {"cell", true}},
@@ -105,6 +129,34 @@ namespace MPM
     check_input(!adaptive || (cfl_number > 0 && cfl_number <= 1),
                 "Time stepping/CFL number = " + std::to_string(cfl_number) +
                   ": must lie in (0, 1].");
+  }
+
+
+  template <int dim>
+  double
+  TimeSteppingParameters<dim>::local_damping_at(const double time) const
+  {
+    if (!local_damping_function)
+      return local_damping;
+    const double alpha = local_damping_function->value(Point<1>(time));
+    check_local_damping(alpha, time);
+    return alpha;
+  }
+
+
+  template <int dim>
+  void
+  TimeSteppingParameters<dim>::check_local_damping(const double alpha,
+                                                   const double time) const
+  {
+    if (!(alpha >= 0 && alpha < 1))
+      {
+        std::ostringstream message;
+        message << "Time stepping/Local damping = '"
+                << local_damping_expression << "' is " << alpha
+                << " at t = " << time << " s: it must lie in [0, 1).";
+        throw InputError(message.str());
+      }
   }
 
 

@@ -1,8 +1,12 @@
 #ifndef mpm_solver_time_stepping_h
 #define mpm_solver_time_stepping_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
+
+#include <memory>
+#include <string>
 
 namespace MPM
 {
@@ -65,7 +69,21 @@ namespace MPM
     double         cfl_number      = 0.5;
     double         maximum_time_step = 1e100;
     UpdateScheme   scheme         = UpdateScheme::usf;
+    /// 'Local damping' if it is a number (else its value at t = 0).
     double         local_damping  = 0;
+    /// 'Local damping' if it is a function of time, else null.
+    std::shared_ptr<const FunctionParser<1>> local_damping_function;
+    std::string                              local_damping_expression = "0";
+
+    /**
+     * The local damping coefficient of the step that starts at @p time;
+     * an InputError if a function of time leaves [0, 1).
+     */
+    double
+    local_damping_at(const double time) const;
+
+    void
+    check_local_damping(const double alpha, const double time) const;
     /// Replace each point's volumetric strain rate by the volume-weighted
     /// mean over the points of its cell (anti-locking).
     bool           average_volumetric_strain = false;
