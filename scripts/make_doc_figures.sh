@@ -46,6 +46,16 @@
 #                     block, flume), scripts/speed_error_sweep.sh
 #                     (doc/performance.md). About 12 min, 10 of them the
 #                     flume.
+#   slope_stability   doc/slope_stability_srm.png (and slope_stability_curve_r0/1.csv):
+#                     crest displacement against the strength reduction
+#                     factor on 1 m and 0.5 m cells, and the bisection of the
+#                     factor of safety on 1, 0.5 and 0.25 m
+#                     (slope_stability_srm_r0/1/2.csv),
+#                     scripts/strength_reduction.sh (doc/slope_stability.md).
+#                     About 20 min, 13 of them the 0.25 m bisection.
+#   slope_runout      doc/slope_runout.png: prm/slope_runout.prm with and
+#                     without softening, scripts/plot_slope_stability.py
+#                     (doc/slope_stability.md). 2 min.
 #
 # Environment:
 #   MPM_PREBUILT_DIR  a build holding mpm (and libmpm-core.so beside it):
@@ -68,7 +78,7 @@ python=/usr/bin/python3
 quick=(flume sliding_block landslide column_collapse)
 every=(flume sliding_block landslide column_collapse column_collapse_apic_cpdi
        column_collapse_shipped_2p5mm column_collapse_apic_cpdi_2p5mm
-       convergence speed_error)
+       convergence speed_error slope_stability slope_runout)
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=("${quick[@]}")
 [ "${figures[*]}" != all ] || figures=("${every[@]}")
@@ -109,6 +119,28 @@ for f in "${figures[@]}"; do
       "$scripts/convergence_sweep.sh" ;;
     speed_error)
       "$scripts/speed_error_sweep.sh" vibrating_bar self_weight_column sliding_block flume ;;
+    slope_stability)
+      factors="1.2 1.25 1.3 1.325 1.35 1.375 1.4 1.425 1.45 1.475 1.5 1.55 1.6"
+      for r in 0 1; do
+        MPM_SRM_NAME=curve_r$r MPM_SRM_FACTORS="$factors" "$scripts/strength_reduction.sh" \
+          "$MPM_ROOT/prm/slope_stability.prm" 1 2 --set "Mesh/Global refinements=$r"
+      done
+      for r in 0 1 2; do
+        MPM_SRM_NAME=srm_r$r "$scripts/strength_reduction.sh" "$MPM_ROOT/prm/slope_stability.prm" \
+          1.2 1.6 0.005 --set "Mesh/Global refinements=$r" | tail -1
+      done
+      "$python" "$scripts/plot_slope_stability.py" srm "$doc/slope_stability_srm.png" \
+        "$doc/slope_stability_curve_r0.csv" "$doc/slope_stability_curve_r1.csv" ;;
+    slope_runout)
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/slope_runout.prm" \
+        --set "Output/Directory=slope-runout" > slope-runout.log
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/slope_runout.prm" \
+        --set "Materials/soil/mohr coulomb/Strain softening/Enabled=false" \
+        --set "Output/Directory=slope-runout-no-softening" > slope-runout-no-softening.log
+      grep -E '^(front|scarp)' slope-runout/report.txt
+      "$python" "$scripts/plot_slope_stability.py" runout "$doc/slope_runout.png" \
+        "slope-runout:3:t = 3 s, released" "slope-runout:5:t = 5 s" "slope-runout:8:t = 8 s" \
+        "slope-runout:20:t = 20 s" "slope-runout-no-softening:20:t = 20 s without softening" ;;
   esac
   echo "== $f: $((SECONDS - start)) s"
 done
