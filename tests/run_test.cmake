@@ -26,14 +26,28 @@ endif()
 get_filename_component(_name ${EXPECTED} NAME_WE)
 if(PRM)
   get_filename_component(_prm_dir ${PRM} DIRECTORY)
-  # "# base: FILE": the test only overrides entries of FILE (a shipped case,
-  # path relative to tests/); mpm reads FILE, then the test's .prm.
+  # "# base: FILE": the test only overrides entries of FILE (a shipped case
+  # or another test, path relative to the file that names it); mpm reads
+  # FILE, then the test's .prm. FILE may have a base of its own: the chain
+  # is read from its root.
   set(_files ${PRM})
-  file(STRINGS ${PRM} _base REGEX "^# base:")
-  if(_base)
-    string(REGEX REPLACE "^# base:[ ]*" "" _base "${_base}")
-    set(_files ${_prm_dir}/${_base} ${PRM})
-  endif()
+  set(_current ${PRM})
+  set(_more 1)
+  while(_more)
+    file(STRINGS ${_current} _base REGEX "^# base:")
+    if(_base)
+      string(REGEX REPLACE "^# base:[ ]*" "" _base "${_base}")
+      get_filename_component(_current_dir ${_current} DIRECTORY)
+      set(_current ${_current_dir}/${_base})
+      list(FIND _files ${_current} _seen)
+      if(NOT _seen EQUAL -1)
+        message(FATAL_ERROR "${_name}: the '# base:' lines form a cycle at ${_current}")
+      endif()
+      list(PREPEND _files ${_current})
+    else()
+      set(_more 0)
+    endif()
+  endwhile()
   # "# expected output: OTHER.output": compare with another test's expected
   # output (e.g. a rotated scene must reproduce the unrotated one).
   file(STRINGS ${PRM} _other REGEX "^# expected output:")
