@@ -67,7 +67,8 @@ namespace MPM
   template <int dim>
   void
   PointUpdate<dim>::update_stress(double               *props,
-                                  const Tensor<2, dim> &grad_v) const
+                                  const Tensor<2, dim> &grad_v,
+                                  const double          cell_size) const
   {
     using Layout               = PropertyLayout<dim>;
     const double       dt      = time_step;
@@ -82,7 +83,8 @@ namespace MPM
                                    dt,
                                    stress,
                                    ArrayView<double>(props + Layout::state,
-                                                     n_state));
+                                                     n_state),
+                                   cell_size);
     write_symmetric_tensor(stress, &props[Layout::stress]);
     // The stiffness at the end of this step is the one of the next step's
     // time step. Only for such materials: the others pay one branch.

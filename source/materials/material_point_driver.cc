@@ -70,6 +70,13 @@ namespace MPM
                         Patterns::Integer(1),
                         "Equal strain increments along the path (per "
                         "cycle for the cyclic one).");
+      prm.declare_entry("Cell size",
+                        "0",
+                        Patterns::Double(0),
+                        "The size (m) of the background cell the point "
+                        "would sit in, for a model regularised by the cell "
+                        "size (MaterialModel::update_stress_in_cell()); 0: "
+                        "no cell, such a model uses its reference values.");
       prm.declare_entry("Cycles",
                         "1",
                         Patterns::Integer(1),
@@ -115,6 +122,7 @@ namespace MPM
                 "Material point driver/Final strain = " +
                   prm.get("Final strain") + ": must be > 0.");
     n_steps            = prm.get_integer("Number of steps");
+    cell_size          = prm.get_double("Cell size");
     n_cycles           = prm.get_integer("Cycles");
     confining_pressure = prm.get_double("Confining pressure");
     duration           = prm.get_double("Duration");
@@ -219,10 +227,11 @@ namespace MPM
       SymmetricTensor<2, 3> increment;
       const double          delta = 1e-9;
       increment[0][1]             = 0.5 * delta;
-      material.model->update_stress(increment,
-                                    probe,
-                                    ArrayView<double>(probe_state),
-                                    dt);
+      material.model->update_stress_in_cell(increment,
+                                            probe,
+                                            ArrayView<double>(probe_state),
+                                            dt,
+                                            cell_size);
       shear_modulus = (probe[0][1] - stress[0][1]) / delta;
     }
     history.shear_modulus = shear_modulus;
@@ -248,8 +257,12 @@ namespace MPM
               trial_L[0][0] = trial_L[2][2] = x;
               SymmetricTensor<2, 3> trial = stress;
               std::vector<double>   trial_state = state;
-              materials.update_stress<3>(
-                material, trial_L, dt, trial, ArrayView<double>(trial_state));
+              materials.update_stress<3>(material,
+                                         trial_L,
+                                         dt,
+                                         trial,
+                                         ArrayView<double>(trial_state),
+                                         cell_size);
               return trial[0][0] + confining_pressure;
             };
             const double axial = std::abs(L[1][1]);
@@ -294,7 +307,7 @@ namespace MPM
           }
         const SymmetricTensor<2, 3> strain_increment =
           materials.update_stress<3>(
-            material, L, dt, stress, ArrayView<double>(state));
+            material, L, dt, stress, ArrayView<double>(state), cell_size);
         volumetric_strain += trace(strain_increment);
         strain += strain_increment;
         record(n + 1);

@@ -160,6 +160,18 @@ namespace MPM
                           "The accumulated plastic shear strain at which the "
                           "residual strength is reached, > 'Peak plastic shear "
                           "strain'.");
+        prm.declare_entry(
+          "Reference cell size",
+          "0",
+          Patterns::Double(0),
+          "Regularisation by the cell size (m): the two plastic shear "
+          "strains above are those of a point in a background cell of this "
+          "size (its shortest vertex distance); in a cell of size h they "
+          "are multiplied by this size / h, so that the plastic "
+          "displacement across a shear band one cell wide that takes the "
+          "soil from peak to residual is the same on every mesh "
+          "(doc/slope_stability.md). 0: not regularised, the strains as "
+          "given in every cell.");
       }
       prm.leave_subsection();
     }
@@ -199,6 +211,7 @@ namespace MPM
           const double c_r   = prm.get_double("Residual cohesion");
           softening_start    = prm.get_double("Peak plastic shear strain");
           softening_end      = prm.get_double("Residual plastic shear strain");
+          reference_cell_size = prm.get_double("Reference cell size");
           check_input(phi_r > 0 && phi_r <= phi_degrees,
                       entry("Residual friction angle") + " = " +
                         std::to_string(phi_r) +
@@ -269,14 +282,15 @@ namespace MPM
 
 
     MohrCoulomb::Strength
-    MohrCoulomb::strength_at(const double kappa) const
+    MohrCoulomb::strength_at(const double kappa,
+                             const double start,
+                             const double end) const
     {
-      if (!softening || kappa <= softening_start)
+      if (!softening || kappa <= start)
         return peak_strength;
-      if (kappa >= softening_end)
+      if (kappa >= end)
         return residual_strength;
-      const double w = (kappa - softening_start) /
-                       (softening_end - softening_start);
+      const double w = (kappa - start) / (end - start);
       Strength strength;
       strength.friction_angle =
         peak_strength.friction_angle +
@@ -603,8 +617,13 @@ namespace MPM
     unsigned int
     MohrCoulomb::return_with_softening(std::array<double, 3> &s,
                                        double &plastic_shear_increment,
-                                       const double kappa) const
+                                       const double kappa,
+                                       const double kappa_scale) const
     {
+      // The softening range of this point (scaled by the cell size, or as
+      // given: kappa_scale = 1 divides exactly).
+      const double softening_start = this->softening_start / kappa_scale;
+      const double softening_end   = this->softening_end / kappa_scale;
       if (kappa >= softening_end)
         return return_principal_inline<true>(residual, s, plastic_shear_increment);
 
@@ -618,7 +637,7 @@ namespace MPM
           return return_principal_inline<true>(residual, s, increment);
         if (k <= softening_start)
           return return_principal_inline<true>(peak, s, increment);
-        return return_principal_inline<false>(make_surfaces(strength_at(k), false),
+        return return_principal_inline<false>(make_surfaces(strength_at(k, softening_start, softening_end), false),
                                        s,
                                        increment);
       };
@@ -627,7 +646,7 @@ namespace MPM
       // elastic check of the return at the strength of kappa, without
       // building that strength's surfaces (their return directions and
       // plastic strain factors were most of a softening update's cost).
-      if (kappa > softening_start && is_elastic(strength_at(kappa), trial))
+      if (kappa > softening_start && is_elastic(strength_at(kappa, softening_start, softening_end), trial))
         {
           plastic_shear_increment = 0;
           return 0;
@@ -694,9 +713,30 @@ namespace MPM
                                const double) const
     {
       if (softening)
-        update_stress_with_softening(strain_increment, stress, state);
+        update_stress_with_softening(strain_increment, stress, state, 1.);
       else
-        update_stress<false>(strain_increment, stress, state);
+        update_stress<false>(strain_increment, stress, state, 1.);
+    }
+
+
+    void
+    MohrCoulomb::update_stress_in_cell(
+      const SymmetricTensor<2, 3> &strain_increment,
+      SymmetricTensor<2, 3>       &stress,
+      const ArrayView<double>     &state,
+      const double,
+      const double cell_size) const
+    {
+      if (softening)
+        update_stress_with_softening(
+          strain_increment,
+          stress,
+          state,
+          reference_cell_size > 0 && cell_size > 0 ?
+            cell_size / reference_cell_size :
+            1.);
+      else
+        update_stress<false>(strain_increment, stress, state, 1.);
     }
 
 
@@ -704,9 +744,10 @@ namespace MPM
     MohrCoulomb::update_stress_with_softening(
       const SymmetricTensor<2, 3> &strain_increment,
       SymmetricTensor<2, 3>       &stress,
-      const ArrayView<double>     &state) const
+      const ArrayView<double>     &state,
+      const double                 kappa_scale) const
     {
-      update_stress<true>(strain_increment, stress, state);
+      update_stress<true>(strain_increment, stress, state, kappa_scale);
     }
 
 
@@ -714,8 +755,10 @@ namespace MPM
     inline DEAL_II_ALWAYS_INLINE void
     MohrCoulomb::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                SymmetricTensor<2, 3>       &stress,
-                               const ArrayView<double>     &state) const
+                               const ArrayView<double>     &state,
+                               const double                 kappa_scale) const
     {
+      (void)kappa_scale; // without softening
       AssertIndexRange(0, state.size());
       // The return of this point: with softening at its accumulated plastic
       // shear strain. (Without, the return never reaches a function that
@@ -725,7 +768,10 @@ namespace MPM
       const auto return_mapping = [&](std::array<double, 3> &s,
                                       double &plastic_shear_increment) {
         if constexpr (with_softening)
-          return return_with_softening(s, plastic_shear_increment, state[0]);
+          return return_with_softening(s,
+                                       plastic_shear_increment,
+                                       state[0],
+                                       kappa_scale);
         else
           return return_principal_inline<true>(peak,
                                                s,

@@ -186,10 +186,12 @@ namespace MPM
 
     unsigned int p = 0;
     this->point_cell_begin.clear();
+    this->point_cell_size.clear();
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
         this->point_cell_begin.push_back(p);
         const CellIterator cell   = it->get_surrounding_cell();
+        this->point_cell_size.push_back(this->context.grid.cell_size(cell));
         const auto         points = particle_handler.particles_in_cell(cell);
         const auto        &patch  = cell_patches[cell->active_cell_index()];
         // The patch's geometry, looked up once for the cell's points, and

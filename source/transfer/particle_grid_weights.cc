@@ -95,6 +95,7 @@ namespace MPM
     ActiveCell active{n,
                       context.local_dofs_of_cells[cell->active_cell_index()],
                       &grid.cell_vertices(cell)};
+    active.size = grid.cell_size(cell);
     if constexpr (dim == 2)
       active.map = &grid.bilinear_map(cell);
     for (const auto &vertex_dofs : active.dofs)

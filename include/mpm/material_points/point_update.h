@@ -65,11 +65,15 @@ namespace MPM
             double                                                   &v_max2);
 
     /// One point's strain, stress (its material model) and volume from
-    /// its velocity gradient @p grad_v over the time step. For a material
-    /// whose stiffness depends on the state, the point's new P-wave speed
-    /// enters take_max_state_wave_speed().
+    /// its velocity gradient @p grad_v over the time step, in a background
+    /// cell of size @p cell_size (BackgroundGrid::cell_size(); for a model
+    /// regularised by it). For a material whose stiffness depends on the
+    /// state, the point's new P-wave speed enters
+    /// take_max_state_wave_speed().
     void
-    update_stress(double *props, const Tensor<2, dim> &grad_v) const;
+    update_stress(double               *props,
+                  const Tensor<2, dim> &grad_v,
+                  const double          cell_size) const;
 
     /**
      * The largest P-wave speed, after their stress update, of this rank's

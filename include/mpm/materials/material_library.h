@@ -136,7 +136,8 @@ namespace MPM
      * @p material's model adds the increment of the strain
      * sym(grad_v) dt, updating the point's @p state. Returns that strain
      * increment. The MPM step (PointUpdate) and the material-point driver
-     * both update stresses here.
+     * both update stresses here. @p cell_size: the size of the point's
+     * background cell (MaterialModel::update_stress_in_cell()).
      */
     template <int dim>
     SymmetricTensor<2, 3>
@@ -144,7 +145,8 @@ namespace MPM
                   const Tensor<2, dim>    &grad_v,
                   const double             dt,
                   SymmetricTensor<2, 3>   &stress,
-                  const ArrayView<double> &state) const
+                  const ArrayView<double> &state,
+                  const double             cell_size) const
     {
       SymmetricTensor<2, 3> strain_increment;
       for (unsigned int a = 0; a < dim; ++a)
@@ -155,7 +157,8 @@ namespace MPM
       // mid-point frame, second order in dt (one rotation before it would
       // be first order: doc/materials.md).
       stress_rate.rotate<dim>(stress, grad_v, 0.5 * dt);
-      material.model->update_stress(strain_increment, stress, state, dt);
+      material.model->update_stress_in_cell(
+        strain_increment, stress, state, dt, cell_size);
       stress_rate.rotate<dim>(stress, grad_v, 0.5 * dt);
       return strain_increment;
     }

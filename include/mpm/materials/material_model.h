@@ -57,6 +57,25 @@ namespace MPM
                   const double                 time_step) const = 0;
 
     /**
+     * The stress update of a point in a background cell of size
+     * @p cell_size (m; the cell's shortest vertex distance), which is what
+     * the MPM step calls. A model whose response must not depend on the
+     * mesh although its deformation localises in bands about one cell wide
+     * (a softening law regularised by the cell size) overrides it; the
+     * others keep this default, update_stress().
+     */
+    virtual void
+    update_stress_in_cell(const SymmetricTensor<2, 3> &strain_increment,
+                          SymmetricTensor<2, 3>       &stress,
+                          const ArrayView<double>     &state,
+                          const double                 time_step,
+                          const double                 cell_size) const
+    {
+      (void)cell_size;
+      update_stress(strain_increment, stress, state, time_step);
+    }
+
+    /**
      * Stored elastic energy per unit volume for the given stress, used by
      * the energy statistics.
      */

@@ -130,6 +130,8 @@ namespace MPM
     Path            path           = Path::simple_shear;
     double          final_strain   = 0.1;
     unsigned int    n_steps        = 1000;
+    /// 'Cell size' (0: no cell).
+    double          cell_size      = 0;
     unsigned int    n_cycles       = 1;
     double          confining_pressure = 0;
     double          duration           = 1;

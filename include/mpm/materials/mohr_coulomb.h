@@ -93,6 +93,18 @@ namespace MPM
                     const ArrayView<double>     &state,
                     const double                 time_step) const override;
 
+      /**
+       * With softening regularised ('Strain softening/Reference cell
+       * size' > 0), the softening strains scaled by @p cell_size / the
+       * reference size; else update_stress().
+       */
+      void
+      update_stress_in_cell(const SymmetricTensor<2, 3> &strain_increment,
+                            SymmetricTensor<2, 3>       &stress,
+                            const ArrayView<double>     &state,
+                            const double                 time_step,
+                            const double cell_size) const override;
+
       double
       strain_energy_density(const SymmetricTensor<2, 3> &stress) const override;
 
@@ -172,7 +184,8 @@ namespace MPM
       inline void
       update_stress(const SymmetricTensor<2, 3> &strain_increment,
                     SymmetricTensor<2, 3>       &stress,
-                    const ArrayView<double>     &state) const;
+                    const ArrayView<double>     &state,
+                    const double                 kappa_scale) const;
 
       /// update_stress<true>, a function of its own: called from
       /// update_stress(), it leaves the path without softening as
@@ -181,16 +194,20 @@ namespace MPM
       update_stress_with_softening(
         const SymmetricTensor<2, 3> &strain_increment,
         SymmetricTensor<2, 3>       &stress,
-        const ArrayView<double>     &state) const;
+        const ArrayView<double>     &state,
+        const double                 kappa_scale) const;
 
       /**
        * The return of a softening material at @p kappa (see the class
-       * documentation): implicit in kappa.
+       * documentation): implicit in kappa. The softening range is divided
+       * by @p kappa_scale (the cell size over the reference size; 1 when
+       * not regularised).
        */
       unsigned int
       return_with_softening(std::array<double, 3> &s,
                             double                &plastic_shear_increment,
-                            const double           kappa) const;
+                            const double           kappa,
+                            const double           kappa_scale) const;
 
       /**
        * Try one candidate set of @p m active planes (a template argument,
@@ -221,9 +238,12 @@ namespace MPM
       bool
       is_elastic(const Strength &strength, const std::array<double, 3> &s) const;
 
-      /// The strength at accumulated plastic shear strain @p kappa.
+      /// The strength at accumulated plastic shear strain @p kappa, with
+      /// the softening range [@p start, @p end] of the point.
       Strength
-      strength_at(const double kappa) const;
+      strength_at(const double kappa,
+                  const double start,
+                  const double end) const;
 
       /**
        * The surfaces of @p strength, with every candidate set prepared if
@@ -263,6 +283,8 @@ namespace MPM
       /// The range of kappa over which the strength softens.
       double softening_start = 0;
       double softening_end   = 0;
+      /// 'Reference cell size' (0: not regularised).
+      double reference_cell_size = 0;
 
       /**
        * A candidate active set with what depends only on the material:

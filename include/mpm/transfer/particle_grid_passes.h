@@ -42,8 +42,9 @@ namespace MPM
    *   not the points): the map of point p's own cell (2D).
    *
    * A weight function whose entries are not its points also fills
-   * point_cell_begin in prepare() (the points grouped by their own cell,
-   * for volumetric averaging).
+   * point_cell_begin and point_cell_size in prepare() (the points grouped
+   * by their own cell, for volumetric averaging and the cell size of the
+   * stress update).
    *
    * The velocity transfer scheme enters through TransferScheme and Apic:
    * with APIC, each entry maps its point's affine field v_p + C_p dx_i, and
@@ -96,6 +97,8 @@ namespace MPM
      * entries are not the points.
      */
     std::vector<unsigned int> point_cell_begin;
+    /// BackgroundGrid::cell_size() of each of those cells.
+    std::vector<double> point_cell_size;
 
   private:
     /// The weight function's hooks.

@@ -309,9 +309,10 @@ namespace MPM
     // gradient.
     const auto update_point = [&](const unsigned int    p,
                                   const Tensor<2, dim> &grad_v,
-                                  const Tensor<2, dim> &D) {
+                                  const Tensor<2, dim> &D,
+                                  const double          cell_size) {
       double *props = this->points[p];
-      updater.update_stress(props, grad_v);
+      updater.update_stress(props, grad_v, cell_size);
       weights().deform_with_point(props, grad_v);
       if (store_gradient)
         Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
@@ -342,7 +343,8 @@ namespace MPM
                              Apic<dim>::second_moment(
                                this->shape_functions[k].value,
                                weights().node_offsets(cell, k)) :
-                             Tensor<2, dim>());
+                             Tensor<2, dim>(),
+                           cell.size);
           }
       }
     else
@@ -366,11 +368,16 @@ namespace MPM
               point_cell_begin[c + 1] - point_cell_begin[c]);
         if (store_gradient)
           second_moments(point_second_moment);
-        for (unsigned int p = 0; p < n_points; ++p)
-          update_point(p,
-                       point_gradients[p],
-                       store_gradient ? point_second_moment[p] :
-                                        Tensor<2, dim>());
+        // The points in the order of their own cells (point_cell_begin).
+        for (unsigned int c = 0; c + 1 < point_cell_begin.size(); ++c)
+          for (unsigned int p = point_cell_begin[c];
+               p < point_cell_begin[c + 1];
+               ++p)
+            update_point(p,
+                         point_gradients[p],
+                         store_gradient ? point_second_moment[p] :
+                                          Tensor<2, dim>(),
+                         point_cell_size[c]);
       }
   }
 

@@ -255,6 +255,8 @@ namespace MPM
       const std::array<Point<dim>, n_vertices> *vertices = nullptr;
       /// The cell's bilinear map (2D; nullptr in 3D).
       const BilinearCellMap *map = nullptr;
+      /// BackgroundGrid::cell_size() of the cell.
+      double size = 0;
     };
 
     /// Start collecting this step's active cells and nodal entries.
