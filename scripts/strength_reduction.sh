@@ -48,14 +48,28 @@ run() {
   echo "$answer"
 }
 
+# answer F: run F and print its answer; a run that gave none (mpm failed
+# inside the command substitution) stops the script.
+answer() {
+  local a
+  a=$(run "$@") || true
+  case "$a" in
+    stable|failed) echo "$a" ;;
+    *) echo "no answer for F = $1 (see $out/F-$1.log)" >&2; exit 1 ;;
+  esac
+}
+
 if [ -n "${MPM_SRM_FACTORS:-}" ]; then
-  for F in $MPM_SRM_FACTORS; do run "$F" "$@" > /dev/null; done
+  for F in $MPM_SRM_FACTORS; do answer "$F" "$@" > /dev/null; done
   exit 0
 fi
-[ "$(run "$low" "$@")" = stable ] || { echo "F = $low already fails: lower LOW" >&2; exit 1; }
-[ "$(run "$high" "$@")" = failed ] || { echo "F = $high is still stable: raise HIGH" >&2; exit 1; }
+result=$(answer "$low" "$@")
+[ "$result" = stable ] || { echo "F = $low already fails: lower LOW" >&2; exit 1; }
+result=$(answer "$high" "$@")
+[ "$result" = failed ] || { echo "F = $high is still stable: raise HIGH" >&2; exit 1; }
 while awk -v a="$low" -v b="$high" -v t="$tol" 'BEGIN { exit !(b - a > t) }'; do
   mid=$(awk -v a="$low" -v b="$high" 'BEGIN { printf "%.6g", (a + b) / 2 }')
-  if [ "$(run "$mid" "$@")" = stable ]; then low="$mid"; else high="$mid"; fi
+  result=$(answer "$mid" "$@")
+  if [ "$result" = stable ]; then low="$mid"; else high="$mid"; fi
 done
 echo "factor of safety in [$low, $high] ($(basename "$prm") $*)"
