@@ -359,6 +359,22 @@ namespace MPM
     MohrCoulomb::prepare_candidate_set(const YieldSurfaces &surfaces,
                                        CandidateSet        &set)
     {
+      if (set.m == 1)
+        {
+          // One plane: the 1 x 1 case of the general code below, with the
+          // same arithmetic (solve() returns 1 / a, and fails exactly when
+          // a is 0 or not a number), without its loops and copies: the
+          // single planes are most of the sets a softening point's return
+          // prepares.
+          const auto  &g = surfaces.gradient[set.active[0]];
+          const auto  &r = surfaces.return_direction[set.active[0]];
+          double       a = 0;
+          for (unsigned int d = 0; d < 3; ++d)
+            a += g[d] * r[d];
+          set.independent   = std::abs(a) > 0;
+          set.inverse[0][0] = 1. / a;
+          return;
+        }
       std::array<std::array<double, 3>, 3> A{};
       for (unsigned int i = 0; i < set.m; ++i)
         for (unsigned int j = 0; j < set.m; ++j)
