@@ -118,12 +118,10 @@ namespace MPM
                                 given_tension_cutoff,
                                 "the apex of the Drucker-Prager cone");
 
-      friction_angle = phi_degrees * degree;
-      given_strength.friction_angle = friction_angle;
+      given_strength.friction_angle = phi_degrees * degree;
       given_strength.dilation_angle = psi_degrees * degree;
       given_strength.cohesion       = cohesion;
       given_strength.tension_cutoff = given_tension_cutoff;
-      strength_reduction            = 1;
       prepare_cone(given_strength);
 
       bulk_modulus = elasticity.lambda + 2. / 3. * elasticity.shear_modulus;
@@ -153,9 +151,6 @@ namespace MPM
     DruckerPrager::set_strength_reduction(const double factor)
     {
       Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
-      if (factor == strength_reduction)
-        return;
-      strength_reduction = factor;
       prepare_cone(given_strength.reduced(factor));
       cone_multiplier_factor =
         1. / (elasticity.shear_modulus + bulk_modulus * eta * eta_bar);
@@ -276,35 +271,6 @@ namespace MPM
     DruckerPrager::p_wave_modulus() const
     {
       return elasticity.p_wave_modulus();
-    }
-
-
-    double
-    DruckerPrager::default_k0() const
-    {
-      return 1 - std::sin(friction_angle);
-    }
-
-
-    unsigned int
-    DruckerPrager::n_state_variables() const
-    {
-      return 1;
-    }
-
-
-    std::vector<std::string>
-    DruckerPrager::state_variable_names() const
-    {
-      return {"plastic_shear_strain"};
-    }
-
-
-    void
-    DruckerPrager::initialize_state(const ArrayView<double> &state) const
-    {
-      AssertIndexRange(0, state.size());
-      state[0] = 0;
     }
   } // namespace MaterialModels
 } // namespace MPM

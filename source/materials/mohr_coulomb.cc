@@ -247,9 +247,8 @@ namespace MPM
       prm.leave_subsection();
 
       inverse_two_shear_modulus = 0.5 / elasticity.shear_modulus;
-      given_peak_strength       = peak_strength;
+      given_strength            = peak_strength;
       given_residual_strength   = residual_strength;
-      strength_reduction        = 1;
       peak                      = make_surfaces(peak_strength, true);
       if (softening)
         residual = make_surfaces(residual_strength, true);
@@ -260,10 +259,7 @@ namespace MPM
     MohrCoulomb::set_strength_reduction(const double factor)
     {
       Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
-      if (factor == strength_reduction)
-        return;
-      strength_reduction = factor;
-      peak_strength      = given_peak_strength.reduced(factor);
+      peak_strength = given_strength.reduced(factor);
       peak               = make_surfaces(peak_strength, true);
       if (softening)
         {
@@ -726,12 +722,11 @@ namespace MPM
     MohrCoulomb::update_stress(const SymmetricTensor<2, 3> &strain_increment,
                                SymmetricTensor<2, 3>       &stress,
                                const ArrayView<double>     &state,
-                               const double) const
+                               const double                 time_step) const
     {
-      if (softening)
-        update_stress_with_softening(strain_increment, stress, state, 1.);
-      else
-        update_stress<false>(strain_increment, stress, state, 1.);
+      // No cell: the softening strains as given.
+      MohrCoulomb::update_stress_in_cell(
+        strain_increment, stress, state, time_step, 0.);
     }
 
 
@@ -905,35 +900,6 @@ namespace MPM
     MohrCoulomb::p_wave_modulus() const
     {
       return elasticity.p_wave_modulus();
-    }
-
-
-    double
-    MohrCoulomb::default_k0() const
-    {
-      return 1 - std::sin(peak_strength.friction_angle);
-    }
-
-
-    unsigned int
-    MohrCoulomb::n_state_variables() const
-    {
-      return 1;
-    }
-
-
-    std::vector<std::string>
-    MohrCoulomb::state_variable_names() const
-    {
-      return {"plastic_shear_strain"};
-    }
-
-
-    void
-    MohrCoulomb::initialize_state(const ArrayView<double> &state) const
-    {
-      AssertIndexRange(0, state.size());
-      state[0] = 0;
     }
   } // namespace MaterialModels
 } // namespace MPM

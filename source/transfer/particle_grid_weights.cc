@@ -91,11 +91,11 @@ namespace MPM
     const unsigned int                                       n)
   {
     const BackgroundGrid<dim> &grid = context.grid;
-    shortest_edge = std::min(shortest_edge, grid.cell_size(cell));
     ActiveCell active{n,
                       context.local_dofs_of_cells[cell->active_cell_index()],
                       &grid.cell_vertices(cell)};
-    active.size = grid.cell_size(cell);
+    active.size   = grid.cell_size(cell);
+    shortest_edge = std::min(shortest_edge, active.size);
     if constexpr (dim == 2)
       active.map = &grid.bilinear_map(cell);
     for (const auto &vertex_dofs : active.dofs)

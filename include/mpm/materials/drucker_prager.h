@@ -75,7 +75,7 @@ namespace MPM
      * sqrt(2/3 e_p : e_p) (e_p the deviatoric plastic strain increment), as
      * in MohrCoulomb, so that the outputs of both models read alike.
      */
-    class DruckerPrager : public MaterialModel
+    class DruckerPrager : public FrictionalModel
     {
     public:
       /**
@@ -118,23 +118,6 @@ namespace MPM
 
       double
       p_wave_modulus() const override;
-
-      /**
-       * Jaky's 1 - sin(phi), as MohrCoulomb: the elastic nu / (1 - nu)
-       * would put a loose sand column at rest far from its real lateral
-       * stress, and both models should start a scene from the same state.
-       */
-      double
-      default_k0() const override;
-
-      unsigned int
-      n_state_variables() const override;
-
-      std::vector<std::string>
-      state_variable_names() const override;
-
-      void
-      initialize_state(const ArrayView<double> &state) const override;
 
       /**
        * The return in the invariants: on input the trial mean stress
@@ -185,12 +168,6 @@ namespace MPM
       static std::pair<double, double>
       cone_coefficients(const Fit fit, const double angle);
 
-      bool
-      has_frictional_strength() const override
-      {
-        return true;
-      }
-
       /// Divide the strength (FrictionalStrength::reduced()) and fit the
       /// cone to it again.
       void
@@ -215,12 +192,6 @@ namespace MPM
 
       IsotropicElasticity elasticity;
       Fit                 fit            = Fit::plane_strain;
-      /// The given friction angle (radians), for K0.
-      double friction_angle = 0;
-      /// The strength as given in the parameter file.
-      FrictionalStrength given_strength;
-      /// The factor the strength is divided by.
-      double strength_reduction = 1;
       /// The tension cap on the mean stress (of the reduced strength).
       double tension_cutoff = 0;
 

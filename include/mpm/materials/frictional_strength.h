@@ -2,10 +2,12 @@
 #define mpm_materials_frictional_strength_h
 
 #include <mpm/base/input_error.h>
+#include <mpm/materials/material_model.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace MPM
 {
@@ -88,6 +90,59 @@ namespace MPM
         return r;
       }
     };
+    /**
+     * What the frictional models ('mohr coulomb', 'drucker prager') share:
+     * a Mohr-Coulomb strength as given in the parameter file, which
+     * 'Materials/Strength reduction factor' divides
+     * (set_strength_reduction(), each model's own), Jaky's K0 from its
+     * friction angle, and one state variable, the accumulated equivalent
+     * plastic shear strain.
+     */
+    class FrictionalModel : public MaterialModel
+    {
+    public:
+      bool
+      has_frictional_strength() const final
+      {
+        return true;
+      }
+
+      /**
+       * Jaky's 1 - sin(phi) for normally consolidated sand: the elastic
+       * nu / (1 - nu) would put a loose sand column at rest far from its
+       * real lateral stress, and both models should start a scene from
+       * the same state.
+       */
+      double
+      default_k0() const final
+      {
+        return 1 - std::sin(given_strength.friction_angle);
+      }
+
+      unsigned int
+      n_state_variables() const final
+      {
+        return 1;
+      }
+
+      std::vector<std::string>
+      state_variable_names() const final
+      {
+        return {"plastic_shear_strain"};
+      }
+
+      void
+      initialize_state(const ArrayView<double> &state) const final
+      {
+        AssertIndexRange(0, state.size());
+        state[0] = 0;
+      }
+
+    protected:
+      /// The strength as given (the peak strength of a softening model).
+      FrictionalStrength given_strength;
+    };
+
   } // namespace MaterialModels
 } // namespace MPM
 

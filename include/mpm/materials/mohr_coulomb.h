@@ -55,7 +55,7 @@ namespace MPM
      * once, like a model without softening; only points inside the
      * softening range pay for surfaces built on the fly.
      */
-    class MohrCoulomb : public MaterialModel
+    class MohrCoulomb : public FrictionalModel
     {
     public:
       /**
@@ -112,34 +112,11 @@ namespace MPM
       p_wave_modulus() const override;
 
       /**
-       * Jaky's 1 - sin(phi) for normally consolidated sand; the elastic
-       * nu / (1 - nu) would put a loose sand column at rest far from its
-       * real lateral stress.
-       */
-      double
-      default_k0() const override;
-
-      bool
-      has_frictional_strength() const override
-      {
-        return true;
-      }
-
-      /**
        * Divide peak and residual strength (FrictionalStrength::reduced())
        * and prepare their surfaces again.
        */
       void
       set_strength_reduction(const double factor) override;
-
-      unsigned int
-      n_state_variables() const override;
-
-      std::vector<std::string>
-      state_variable_names() const override;
-
-      void
-      initialize_state(const ArrayView<double> &state) const override;
 
       /**
        * The return mapping in principal stress space: on input the trial
@@ -274,11 +251,9 @@ namespace MPM
       Strength peak_strength;
       /// The residual strength (softening only), reduced like the peak.
       Strength residual_strength;
-      /// The peak and residual strengths as given in the parameter file.
-      Strength given_peak_strength;
+      /// The residual strength as given in the parameter file (the peak
+      /// one is FrictionalModel::given_strength).
       Strength given_residual_strength;
-      /// The factor the strengths are divided by.
-      double strength_reduction = 1;
       bool     softening = false;
       /// The range of kappa over which the strength softens.
       double softening_start = 0;
