@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Throughput on one core (Release): particle-steps per second of the MPM step
-# for linear elastic and Mohr-Coulomb from 1e3 to 1e6 points
-# (prm/throughput.prm: a block of 2 x 2 points per cell on a fixed floor),
-# split by the timer sections; then the same 1e4 points in a mesh with 100
-# times the cells (empty cells must cost nothing). The rate counts only the
-# steps (mpm's 'Done' line), not the set-up. Writes doc/throughput.csv.
+# Throughput (Release): particle-steps per second of the MPM step for linear
+# elastic and Mohr-Coulomb from 1e3 to 1e6 points (prm/throughput.prm: a
+# block of 2 x 2 points per cell on a fixed floor), split by the timer
+# sections; then the same block with CPDI weights, and the same 1e4 points
+# in a mesh with 100 times the cells (empty cells must cost nothing). The
+# rate counts only the steps (mpm's 'Done' line), not the set-up. Each case
+# runs MPM_REPEATS times (default 3) and the run with the median rate is
+# kept; MPM_THREADS lists the threads per run (default "1"; e.g. "1 2").
+# Writes doc/throughput.csv.
 # Usage: scripts/throughput_benchmark.sh [particle-steps per run, default 4e6]
 # (each run takes max(20, that / points) steps: long enough to time)
 set -euo pipefail
@@ -14,15 +17,15 @@ work="${1:-4e6}"
 out="output-throughput"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/throughput.csv"
-echo "model,points,cells,mesh_factor,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s" > "$csv"
+echo "model,points,cells,mesh_factor,threads,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s" > "$csv"
 
-# run MODEL POINTS MESH_FACTOR [WEIGHTS]: the block has POINTS points
+# run_once MODEL POINTS MESH_FACTOR WEIGHTS THREADS: the block has POINTS points
 # (2 x 2 per cell, side 1 m); the mesh is MESH_FACTOR times the block's
 # cells per side, twice as wide as the block at least; WEIGHTS the
 # particle-grid weights (linear, or cpdi: then the model column reads
-# "MODEL (cpdi)").
-run() {
-  local model="$1" points="$2" factor="$3" weights="${4:-linear}"
+# "MODEL (cpdi)"), on THREADS threads.
+run_once() {
+  local model="$1" points="$2" factor="$3" weights="$4" threads="$5"
   # Linear elastic: USF with FLIP. Mohr-Coulomb: the flume's MUSL with PIC
   # (with USF and FLIP the slumping block gains energy and the stability
   # check stops it at 0.8 s; doc/performance.md).
@@ -36,8 +39,8 @@ run() {
   # dt = 0.5 h / c with c = 86.5 m/s (E 1e7, nu 0.3, rho 1800).
   h=$(awk -v c="$block_cells" 'BEGIN { print 1 / c }')
   end_time=$(awk -v h="$h" -v s="$steps" 'BEGIN { print s * 0.5 * h / 86.49 * 0.999 }')
-  name="$model-$points-$factor-$weights"
-  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/throughput.prm" \
+  name="$model-$points-$factor-$weights-$threads"
+  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/throughput.prm" --threads "$threads" \
     --set "Mesh/Generator arguments={$mesh_cells, $mesh_cells} : 0, 0 : $side, $side : true" \
     --set "Material points/block/Box=0, 0 : 1, 1" \
     --set "Materials/block/Model=$model" \
@@ -49,7 +52,7 @@ run() {
   local label="$model"
   [ "$weights" = linear ] || label="$model ($weights)"
   awk -v model="$label" -v points="$points" -v cells="$(( mesh_cells * mesh_cells ))" \
-      -v factor="$factor" '
+      -v factor="$factor" -v threads="$threads" '
     /^Done:/ { n_steps = $2; n_points = $4
                stepping = $0; sub(/.*\(steps /, "", stepping); sub(/ s\).*/, "", stepping) }
     /^\| / {
@@ -61,10 +64,22 @@ run() {
       # The wall time of the steps (printed by mpm), including the work
       # between the timed sections.
       rate = n_steps * n_points / stepping
-      printf "%s,%d,%d,%d,%d,%.4g,%.4g,%s,%s,%s,%s,%s,%s\n", model, n_points, cells, factor,
-        n_steps, stepping, rate, sec["shape functions"], sec["particle to grid"],
+      printf "%s,%d,%d,%d,%d,%d,%.4g,%.4g,%s,%s,%s,%s,%s,%s\n", model, n_points, cells, factor,
+        threads, n_steps, stepping, rate, sec["shape functions"], sec["particle to grid"],
         sec["nodal update"], sec["grid to particle"], sec["stress update"], sec["locate points"]
-    }' "$out/$name.log" | tee -a "$csv"
+    }' "$out/$name.log"
+}
+
+# run MODEL POINTS MESH_FACTOR [WEIGHTS]: MPM_REPEATS runs for each number of
+# threads in MPM_THREADS; the one with the median rate goes to the table.
+run() {
+  local weights="${4:-linear}" threads lines
+  for threads in ${MPM_THREADS:-1}; do
+    lines=$(for r in $(seq "${MPM_REPEATS:-3}"); do
+      run_once "$1" "$2" "$3" "$weights" "$threads"
+    done | sort -t, -k8,8g)
+    echo "$lines" | awk -v n="$(echo "$lines" | wc -l)" 'NR == int((n + 1) / 2)' | tee -a "$csv"
+  done
 }
 
 for model in "linear elastic" "mohr coulomb"; do

@@ -7,6 +7,7 @@
  * parameters.
  */
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/base/input_deck.h>
@@ -76,10 +77,16 @@ main(int argc, char **argv)
   using namespace MPM;
   try
     {
-      Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+      // Threads per rank: the cores available to the process divided
+      // among the ranks on its node, unless --threads says otherwise.
+      Utilities::MPI::MPI_InitFinalize mpi(argc,
+                                           argv,
+                                           numbers::invalid_unsigned_int);
       try
         {
           const CommandLine cl = parse_command_line(argc, argv);
+          if (cl.n_threads > 0)
+            MultithreadInfo::set_thread_limit(cl.n_threads);
           if (cl.show_help ||
               (cl.parameter_files.empty() && !cl.print_parameters))
             {

@@ -5,7 +5,8 @@
 #    Tests named bad_input_* or error_* must stop with a non-zero exit code;
 #    their stderr is compared instead. Tests whose name starts with bad_input_
 #    must fail with a non-zero exit code; their stderr is compared instead.
-#    With RANKS > 1 (tests NAME.mpirun=N), mpm runs on RANKS MPI ranks.
+#    With RANKS > 1 (tests NAME.mpirun=N), mpm runs on RANKS MPI ranks;
+#    each rank on "# threads: N" threads (default 1, or $MPM_TEST_THREADS).
 #  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
 # Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
 # test's expected output's first line), else -a 1e-10 -r 1e-8.
@@ -63,13 +64,27 @@ if(PRM)
     set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)
     set(ENV{OMPI_ALLOW_RUN_AS_ROOT_CONFIRM} 1)
   endif()
+  # Threads per rank: "# threads: N" in the .prm, else the environment's
+  # MPM_TEST_THREADS (the whole suite on N threads: the outputs must not
+  # change), else 1 (ctest -j already fills the cores).
+  set(_threads 1)
+  if(DEFINED ENV{MPM_TEST_THREADS})
+    set(_threads $ENV{MPM_TEST_THREADS})
+  endif()
+  file(STRINGS ${PRM} _threads_line REGEX "^# threads:")
+  if(_threads_line)
+    string(REGEX REPLACE "^# threads:[ ]*" "" _threads "${_threads_line}")
+  endif()
   # Steps, in the order of their lines (default: one run):
   #  "# run: ARGS"      run mpm with these extra arguments; every run but
   #                     the last must succeed, the last is the one judged;
   #                     %WORKDIR% in ARGS is the test's folder;
   #  "# truncate: FILE" cut the last 64 bytes off WORKDIR/FILE (a damaged
-  #                     checkpoint).
-  file(STRINGS ${PRM} _steps REGEX "^# (run|truncate):")
+  #                     checkpoint);
+  #  "# identical: A B" WORKDIR/A and WORKDIR/B must be the same, byte for
+  #                     byte (e.g. the statistics of two runs on different
+  #                     numbers of threads, on the same machine).
+  file(STRINGS ${PRM} _steps REGEX "^# (run|truncate|identical):")
   if(NOT _steps)
     set(_steps "# run:")
   endif()
@@ -85,12 +100,21 @@ if(PRM)
       endif()
       continue()
     endif()
+    if(_step MATCHES "^# identical:[ ]*([^ ]+)[ ]+([^ ]+)[ ]*$")
+      execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
+        ${WORKDIR}/${CMAKE_MATCH_1} ${WORKDIR}/${CMAKE_MATCH_2}
+        RESULT_VARIABLE _rc)
+      if(NOT _rc EQUAL 0)
+        message(FATAL_ERROR "${_name}: ${CMAKE_MATCH_1} and ${CMAKE_MATCH_2} differ")
+      endif()
+      continue()
+    endif()
     string(REGEX REPLACE "^# run:[ ]*" "" _extra "${_step}")
     # %WORKDIR%: the test's folder (e.g. a file an earlier run wrote).
     string(REPLACE "%WORKDIR%" "${WORKDIR}" _extra "${_extra}")
     separate_arguments(_extra UNIX_COMMAND "${_extra}")
     execute_process(
-      COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}" ${_extra}
+      COMMAND ${_launcher} ${MPM} ${_files} --set "Output/Directory=${WORKDIR}" --threads ${_threads} ${_extra}
       WORKING_DIRECTORY ${WORKDIR}
       RESULT_VARIABLE _rc
       OUTPUT_FILE ${WORKDIR}/screen.txt

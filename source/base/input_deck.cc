@@ -4,6 +4,7 @@
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -34,7 +35,7 @@ namespace MPM
   {
     return "Usage: mpm [--print-parameters|--material-point-driver] "
            "[input.prm [more.prm ...]] "
-           "[--set \"Subsection/Entry=value\"]...\n"
+           "[--set \"Subsection/Entry=value\"]... [--threads N]\n"
            "  input.prm             parameter file to run; further files "
            "override its entries\n"
            "  --set PATH=VALUE      override one parameter after reading the "
@@ -48,6 +49,11 @@ namespace MPM
            "documentation and default\n"
            "                        (or the values of input.prm if given) "
            "and exit\n"
+           "  --threads N           threads per MPI rank (default: the cores "
+           "available to the\n"
+           "                        process divided among the ranks on its "
+           "node); the results\n"
+           "                        are the same, bit for bit, for any N\n"
            "  --help                this text\n";
   }
 
@@ -82,6 +88,25 @@ namespace MPM
                           "\": expected \"Subsection/Entry=value\".");
             cl.overrides.emplace_back(Utilities::trim(assignment.substr(0, eq)),
                                       Utilities::trim(assignment.substr(eq + 1)));
+          }
+        else if (arg == "--threads" || arg.rfind("--threads=", 0) == 0)
+          {
+            std::string value;
+            if (arg == "--threads")
+              {
+                check_input(i + 1 < argc,
+                            "--threads needs a number of threads (>= 1).");
+                value = argv[++i];
+              }
+            else
+              value = arg.substr(10);
+            char         *end = nullptr;
+            const long    n   = std::strtol(value.c_str(), &end, 10);
+            check_input(!value.empty() && *end == '\0' && n >= 1 &&
+                          n <= 4096,
+                        "--threads " + value +
+                          ": expected a number of threads from 1 to 4096.");
+            cl.n_threads = static_cast<unsigned int>(n);
           }
         else if (!arg.empty() && arg[0] == '-')
           throw InputError("Unknown command line option '" + arg + "'.\n" +

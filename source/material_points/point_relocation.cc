@@ -89,8 +89,10 @@ namespace MPM
           {
             // The same in-cell test as the grid-to-particle pass makes.
             const BilinearCellMap &map = grid->bilinear_map(cell);
+            Located                located;
             for (auto point = points.begin(); point != points.end(); ++point)
-              locate_in_cell(map, point, point->get_location());
+              locate_in_cell(map, point, point->get_location(), located);
+            add_located(located);
             it = points.end();
             continue;
           }

@@ -26,7 +26,7 @@ namespace MPM
     const Tensor<1, dim>                                     &a,
     const Tensor<1, dim>                                     &v_new,
     const BilinearCellMap                                    *map,
-    double                                                   &v_max2)
+    Findings                                                 &findings) const
   {
     using Layout      = PropertyLayout<dim>;
     const double dt   = time_step;
@@ -43,24 +43,39 @@ namespace MPM
     point->set_location(x);
     // Step 1 of the point location, with each new position at hand.
     if (relocation.can_locate_while_moving())
-      relocation.locate_in_cell(*map, point, x);
+      PointRelocation<dim>::locate_in_cell(*map, point, x, findings.located);
     const double speed2 =
       read_vector<dim>(&props[Layout::velocity]).norm_square();
-    v_max2 = std::max(v_max2, speed2);
+    findings.v_max2 = std::max(findings.v_max2, speed2);
     // Blow-up check at the price of one sum: a NaN or infinity in the
     // velocity, position or stress makes it non-finite.
     double check = speed2 + x[0] + x[dim - 1];
     for (unsigned int c = 0; c < 6; ++c)
       check += props[Layout::stress + c];
-    if (!std::isfinite(check) && bad_point.empty())
+    if (!std::isfinite(check) && findings.first_bad_point.empty())
       {
         std::ostringstream s;
         s << "material point " << point->get_id() << " at ("
           << point->get_location() << ") in cell "
           << point->get_surrounding_cell()->id().to_string()
           << " has a non-finite velocity, position or stress";
-        bad_point = s.str();
+        findings.first_bad_point = s.str();
       }
+  }
+
+
+  template <int dim>
+  double
+  PointUpdate<dim>::record(Findings &findings)
+  {
+    if (bad_point.empty())
+      bad_point = findings.first_bad_point;
+    max_state_wave_speed2 =
+      std::max(max_state_wave_speed2, findings.max_state_wave_speed2);
+    relocation.add_located(findings.located);
+    const double v_max2 = findings.v_max2;
+    findings            = Findings();
+    return v_max2;
   }
 
 
@@ -68,7 +83,8 @@ namespace MPM
   void
   PointUpdate<dim>::update_stress(double               *props,
                                   const Tensor<2, dim> &grad_v,
-                                  const double          cell_size) const
+                                  const double          cell_size,
+                                  Findings             &findings) const
   {
     using Layout               = PropertyLayout<dim>;
     const double       dt      = time_step;
@@ -89,8 +105,8 @@ namespace MPM
     // The stiffness at the end of this step is the one of the next step's
     // time step. Only for such materials: the others pay one branch.
     if (material.state_dependent_stiffness)
-      max_state_wave_speed2 =
-        std::max(max_state_wave_speed2,
+      findings.max_state_wave_speed2 =
+        std::max(findings.max_state_wave_speed2,
                  material.model->p_wave_modulus(
                    stress,
                    ArrayView<const double>(props + Layout::state, n_state)) /

@@ -9,6 +9,7 @@
 
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/solver/simulator.h>
 
 #include <chrono>
@@ -40,6 +41,7 @@ namespace MPM
   Simulator<dim>::setup()
   {
     TimerOutput::Scope t(timer, "setup");
+    const OneThreadScope one_thread;
     output_writer.initialize(mpi_communicator);
     grid.create();
     // Gravity is given in the scene's frame, like everything else.
@@ -140,7 +142,8 @@ namespace MPM
           << grid.triangulation.n_global_active_cells() << " cells, "
           << stats.n_points << " material points, mass " << stats.mass
           << " kg, " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " MPI rank(s)\n";
+          << " MPI rank(s) x " << one_thread.threads_outside()
+          << " thread(s)\n";
 
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {

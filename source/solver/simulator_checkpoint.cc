@@ -10,6 +10,7 @@
 #include <boost/serialization/vector.hpp>
 
 #include <mpm/base/input_error.h>
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/solver/simulator.h>
 
 #include <chrono>
@@ -157,6 +158,7 @@ namespace MPM
   Simulator<dim>::repartition()
   {
     TimerOutput::Scope t(timer, "repartition");
+    const OneThreadScope one_thread;
     const types::particle_index n_before =
       particle_handler.n_global_particles();
     particle_handler.prepare_for_coarsening_and_refinement();

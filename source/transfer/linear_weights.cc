@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/material_points/property_layout.h>
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/transfer/linear_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
 
@@ -22,38 +23,47 @@ namespace MPM
   LinearWeights<dim>::prepare()
   {
     auto &particle_handler = this->context.particle_handler;
-    const auto &grid       = this->context.grid;
     TimerOutput::Scope t(this->context.timer, "shape functions");
     this->clear_active_cells();
     this->shape_functions.resize(particle_handler.n_locally_owned_particles());
     this->points.resize(particle_handler.n_locally_owned_particles());
 
-    unsigned int k = 0;
+    // The cells holding points, in the order of the points (the
+    // ParticleHandler's, cell by cell); each cell's points are its entries.
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
         const typename Triangulation<dim>::active_cell_iterator cell =
           it->get_surrounding_cell();
-        const auto         points      = particle_handler.particles_in_cell(cell);
-        const unsigned int first_point = k;
-        // The cell's geometry as the shape functions take it: its bilinear
-        // map in 2D, its vertices in 3D. The number of points is counted
-        // here (ParticleHandler::n_particles_in_cell() looks the cell up
-        // again).
-        const auto fill = [&](const auto &geometry) {
-          for (auto point = points.begin(); point != points.end(); ++point)
-            {
-              this->points[k] = point->get_properties().data();
-              this->shape_functions[k++].reinit(
-                geometry, point->get_reference_location());
-            }
-        };
-        if constexpr (dim == 2)
-          fill(grid.bilinear_map(cell));
-        else
-          fill(grid.cell_vertices(cell));
-        this->add_active_cell(cell, k - first_point);
+        const auto points = particle_handler.particles_in_cell(cell);
+        this->add_active_cell(cell,
+                              particle_handler.n_particles_in_cell(cell),
+                              points.begin());
         it = points.end();
       }
+    // Their shape functions, cell by cell on the available threads, with
+    // the cell's geometry as the shape functions take it: its bilinear map
+    // in 2D, its vertices in 3D.
+    for_each_chunk(
+      this->active_cells.size(),
+      this->cells_per_chunk,
+      [this](const unsigned int, const unsigned int first, const unsigned int last) {
+        for (unsigned int c = first; c < last; ++c)
+          {
+            const auto        &cell  = this->active_cells[c];
+            auto               point = cell.first_point;
+            const unsigned int end   = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k, ++point)
+              {
+                this->points[k] = point->get_properties().data();
+                if constexpr (dim == 2)
+                  this->shape_functions[k].reinit(
+                    *cell.map, point->get_reference_location());
+                else
+                  this->shape_functions[k].reinit(
+                    *cell.vertices, point->get_reference_location());
+              }
+          }
+      });
     return this->finish_active_cells();
   }
 

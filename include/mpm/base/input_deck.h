@@ -32,6 +32,10 @@ namespace MPM
     /// --material-point-driver: run MaterialPointDriver instead of a scene.
     bool                                             material_point_driver = false;
     bool                                             show_help        = false;
+    /// --threads N: threads per MPI rank; 0 if not given (then deal.II's
+    /// default, the cores available to the process divided among the
+    /// ranks on its node).
+    unsigned int                                     n_threads        = 0;
   };
 
   /**

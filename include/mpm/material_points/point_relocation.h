@@ -100,16 +100,30 @@ namespace MPM
     }
 
     /**
+     * What step 1 of relocate() found for a range of points: those outside
+     * their old cell, in the order they were seen, and how many points it
+     * saw. Kept per chunk of points by a threaded pass (for_each_chunk())
+     * and handed to add_located() in chunk order.
+     */
+    struct Located
+    {
+      std::vector<ParticleIterator> leavers;
+      unsigned long long            n_points = 0;
+    };
+
+    /**
      * Step 1 of relocate() for one point that has just moved to @p x and
      * whose (old) cell has the bilinear map @p map: store its new
-     * reference coordinates if it is still inside, otherwise remember it
-     * for relocate_leavers(). Only if can_locate_while_moving(); then
-     * every point must pass through here before relocate_leavers().
+     * reference coordinates if it is still inside, otherwise add it to
+     * @p located's leavers. Only if can_locate_while_moving(); then every
+     * point must pass through here, and its range to add_located(), before
+     * relocate_leavers(). Safe on several threads for different points.
      */
-    void
+    static void
     locate_in_cell(const BilinearCellMap &map,
                    ParticleIterator        point,
-                   const Point<dim>       &x)
+                   const Point<dim>       &x,
+                   Located                &located)
     {
       if constexpr (dim == 2)
         {
@@ -117,16 +131,29 @@ namespace MPM
           if (map.contains(x, xi))
             point->set_reference_location(xi);
           else
-            leavers_of_this_step.push_back(point);
-          ++stats.n_points_mapped;
+            located.leavers.push_back(point);
+          ++located.n_points;
         }
       else
         {
           (void)map;
           (void)point;
           (void)x;
+          (void)located;
           Assert(false, ExcInternalError());
         }
+    }
+
+    /// Take over what locate_in_cell() found for a range of points (the
+    /// ranges in the order of the points).
+    void
+    add_located(Located &located)
+    {
+      leavers_of_this_step.insert(leavers_of_this_step.end(),
+                                  located.leavers.begin(),
+                                  located.leavers.end());
+      stats.n_points_mapped += located.n_points;
+      located = Located();
     }
 
     /**

@@ -47,14 +47,32 @@ namespace MPM
     }
 
     /**
+     * What the updates of a range of points found: kept per chunk of points
+     * by the threaded passes (for_each_chunk()), so that the points update
+     * concurrently, and handed to record() in chunk order.
+     */
+    struct Findings
+    {
+      /// The largest squared point speed after advance().
+      double v_max2 = 0;
+      /// The largest squared P-wave speed after update_stress() of points
+      /// whose material's stiffness depends on the state.
+      double max_state_wave_speed2 = 0;
+      /// The first point found with a non-finite velocity, position or
+      /// stress (empty if none).
+      std::string first_bad_point;
+      /// Step 1 of the point location, if done while moving.
+      typename PointRelocation<dim>::Located located;
+    };
+
+    /**
      * Grid to particle for one point (@p point, its properties @p props):
      * its new velocity from the interpolated nodal acceleration @p a and
      * end-of-step velocity @p v_new (the FLIP/PIC blend of the
      * VelocityTransfer), its new position x + dt v_new (located in its
      * cell, whose 2D map is @p map, if the relocation does that while
-     * moving), the largest squared speed @p v_max2 so far, and the blow-up
-     * check: the first point with a non-finite velocity, position or
-     * stress is remembered (first_bad_point()).
+     * moving), its speed and the blow-up check into @p findings. Safe on
+     * several threads for different points and findings.
      */
     void
     advance(typename Particles::ParticleHandler<dim>::particle_iterator point,
@@ -62,18 +80,28 @@ namespace MPM
             const Tensor<1, dim>                                     &a,
             const Tensor<1, dim>                                     &v_new,
             const BilinearCellMap                                    *map,
-            double                                                   &v_max2);
+            Findings &findings) const;
 
     /// One point's strain, stress (its material model) and volume from
     /// its velocity gradient @p grad_v over the time step, in a background
     /// cell of size @p cell_size (BackgroundGrid::cell_size(); for a model
     /// regularised by it). For a material whose stiffness depends on the
-    /// state, the point's new P-wave speed enters
-    /// take_max_state_wave_speed().
+    /// state, the point's new P-wave speed enters @p findings. Safe on
+    /// several threads for different points and findings.
     void
     update_stress(double               *props,
                   const Tensor<2, dim> &grad_v,
-                  const double          cell_size) const;
+                  const double          cell_size,
+                  Findings             &findings) const;
+
+    /**
+     * Take over what the updates of a range of points found (the ranges in
+     * the order of the points): the first bad point, the state's wave
+     * speed, the point location's step 1. Resets @p findings; returns its
+     * v_max2.
+     */
+    double
+    record(Findings &findings);
 
     /**
      * The largest P-wave speed, after their stress update, of this rank's
@@ -123,10 +151,8 @@ namespace MPM
     double                       time_step = 0;
     double                       flip      = 0;
     std::string                  bad_point;
-    /// The square of take_max_state_wave_speed(); mutable because the
-    /// stress update is const (the particle-grid passes hold the updater
-    /// as const).
-    mutable double               max_state_wave_speed2 = 0;
+    /// The square of take_max_state_wave_speed().
+    double                       max_state_wave_speed2 = 0;
   };
 } // namespace MPM
 

@@ -3,6 +3,7 @@
 
 #include <mpm/transfer/particle_grid_weights.h>
 
+#include <array>
 #include <vector>
 
 namespace MPM
@@ -58,6 +59,14 @@ namespace MPM
    * Each pass loops over the active cells and their entries, reads a
    * cell's nodal values once for all its entries and adds its sums to the
    * nodes once.
+   *
+   * Threads (`mpm --threads N`): the cells are worked on in fixed chunks
+   * (for_active_cells(), for_each_chunk()); each cell's sums are added to
+   * the nodes in the order of the cells and each chunk's findings
+   * (PointUpdate::Findings) are taken over in chunk order, so that a run
+   * gives the same numbers, bit for bit, on any number of threads. Where
+   * the entries are not the points, the sums over a point's entries
+   * (which lie in several cells) stay on one thread.
    */
   template <int dim, class Weights>
   class ParticleGridPasses : public ParticleGridWeights<dim>
@@ -91,6 +100,11 @@ namespace MPM
   protected:
     using typename ParticleGridWeights<dim>::ActiveCell;
 
+    /// Active cells per chunk of the threaded loops (for_each_chunk()):
+    /// some ten microseconds of work, so that TBB's cost per chunk is
+    /// small.
+    static constexpr unsigned int cells_per_chunk = 64;
+
     /**
      * The first point (index into point_properties()) of each cell holding
      * points, and one past the last: filled by prepare() of weights whose
@@ -101,6 +115,32 @@ namespace MPM
     std::vector<double> point_cell_size;
 
   private:
+    /**
+     * Call @p body(c, chunk, sums) for every active cell c (chunk: the
+     * index of its chunk, for the body's per-chunk results), on the
+     * available threads, and add the cell's per-vertex sums[f] to
+     * *targets[f] (skipped where nullptr). On several threads the sums are
+     * kept per cell and added afterwards in the order of the cells, as one
+     * thread adds them: the nodal values are bit for bit the same.
+     */
+    template <std::size_t n_targets, typename Body>
+    void
+    for_active_cells(const std::array<NodalVector *, n_targets> &targets,
+                     const Body                                 &body);
+
+    /// for_active_cells()'s sums of each cell (on several threads).
+    std::vector<VertexValues> cell_sums;
+    /// What the point updates of each chunk of cells found.
+    std::vector<typename PointUpdate<dim>::Findings> chunk_findings;
+    /// Per chunk: the velocity gradients of one cell's points (volumetric
+    /// averaging).
+    std::vector<std::vector<Tensor<2, dim>>> chunk_gradients;
+
+    /// Take over chunk_findings (in chunk order); the largest squared
+    /// speed among them.
+    double
+    record_chunk_findings();
+
     /// The weight function's hooks.
     const Weights &
     weights() const
@@ -133,8 +173,8 @@ namespace MPM
                       const Tensor<1, dim> &v,
                       AffineFitSums      &sums) const;
 
-    /// The velocity gradients of a cell's points, or each point's summed
-    /// over its entries (stress update).
+    /// Each point's velocity gradient summed over its entries (stress
+    /// update, weights whose entries are not the points).
     std::vector<Tensor<2, dim>> point_gradients;
     /// Per-point sums over the entries: interpolated acceleration and
     /// velocity.

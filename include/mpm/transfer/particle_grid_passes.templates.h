@@ -5,11 +5,70 @@
 // source file, which instantiates them with its own hooks (inlined).
 
 #include <mpm/material_points/property_layout.h>
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/transfer/apic.h>
 #include <mpm/transfer/particle_grid_passes.h>
 
 namespace MPM
 {
+  template <int dim, class Weights>
+  template <std::size_t n_targets, typename Body>
+  void
+  ParticleGridPasses<dim, Weights>::for_active_cells(
+    const std::array<NodalVector *, n_targets> &targets,
+    const Body                                 &body)
+  {
+    const unsigned int n_cells = this->active_cells.size();
+    const bool         serial  = chunks_run_serially(n_cells, cells_per_chunk);
+    const bool         any_target =
+      std::any_of(targets.begin(), targets.end(), [](const NodalVector *v) {
+        return v != nullptr;
+      });
+    if (!serial && any_target)
+      cell_sums.resize(std::size_t(n_cells) * n_targets);
+    for_each_chunk(
+      n_cells,
+      cells_per_chunk,
+      [&](const unsigned int chunk,
+          const unsigned int first,
+          const unsigned int last) {
+        for (unsigned int c = first; c < last; ++c)
+          {
+            std::array<VertexValues, n_targets> sums;
+            body(c, chunk, sums);
+            for (unsigned int f = 0; f < n_targets; ++f)
+              if (targets[f] != nullptr)
+                {
+                  if (serial)
+                    this->add_to_nodes(this->active_cells[c],
+                                       sums[f],
+                                       *targets[f]);
+                  else
+                    cell_sums[std::size_t(c) * n_targets + f] = sums[f];
+                }
+          }
+      });
+    if (!serial && any_target)
+      for (unsigned int c = 0; c < n_cells; ++c)
+        for (unsigned int f = 0; f < n_targets; ++f)
+          if (targets[f] != nullptr)
+            this->add_to_nodes(this->active_cells[c],
+                               cell_sums[std::size_t(c) * n_targets + f],
+                               *targets[f]);
+  }
+
+
+  template <int dim, class Weights>
+  double
+  ParticleGridPasses<dim, Weights>::record_chunk_findings()
+  {
+    double v_max2 = 0;
+    for (auto &findings : chunk_findings)
+      v_max2 = std::max(v_max2, this->context.point_update.record(findings));
+    return v_max2;
+  }
+
+
   template <int dim, class Weights>
   void
   ParticleGridPasses<dim, Weights>::map_mass_and_momentum(
@@ -33,14 +92,20 @@ namespace MPM
                                                   this->transfer_slot,
                                                 point_second_moment[p]);
       }
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        // Summed over the cell's entries first and added to the nodes once
-        // per cell: added entry by entry, every entry waited for the
-        // previous one's load-add-store of the same nodal entries.
-        VertexValues mass, momentum, forces;
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+    // Summed over each cell's entries first and added to the nodes once
+    // per cell: added entry by entry, every entry waited for the previous
+    // one's load-add-store of the same nodal entries.
+    this->template for_active_cells<3>(
+      {{&nodal.mass, &nodal.momentum, with_forces ? &nodal.force : nullptr}},
+      [&](const unsigned int c,
+          const unsigned int,
+          std::array<VertexValues, 3> &sums) {
+        const ActiveCell &cell     = this->active_cells[c];
+        VertexValues     &mass     = sums[0];
+        VertexValues     &momentum = sums[1];
+        VertexValues     &forces   = sums[2];
+        const unsigned int end     = cell.first_entry + cell.n_points;
+        for (unsigned int k = cell.first_entry; k < end; ++k)
           {
             const unsigned int p     = weights().point_of_entry(k);
             const double      *props = this->points[p];
@@ -66,11 +131,7 @@ namespace MPM
             if (with_forces)
               weights().add_entry_forces(k, props, g, forces);
           }
-        this->add_to_nodes(cell, mass, nodal.mass);
-        this->add_to_nodes(cell, momentum, nodal.momentum);
-        if (with_forces)
-          this->add_to_nodes(cell, forces, nodal.force);
-      }
+      });
     this->add_contributions_of_all_ranks(nodal.mass);
     this->add_contributions_of_all_ranks(nodal.momentum);
     if (with_forces)
@@ -84,15 +145,17 @@ namespace MPM
   {
     TimerOutput::Scope   t(this->context.timer, "particle to grid");
     const Tensor<1, dim> g = this->context.time_stepping.gravity;
-    unsigned int         k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        VertexValues forces;
-        for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+    this->template for_active_cells<1>(
+      {{&this->context.nodal.force}},
+      [&](const unsigned int c,
+          const unsigned int,
+          std::array<VertexValues, 1> &forces) {
+        const ActiveCell  &cell = this->active_cells[c];
+        const unsigned int end  = cell.first_entry + cell.n_points;
+        for (unsigned int k = cell.first_entry; k < end; ++k)
           weights().add_entry_forces(
-            k, this->points[weights().point_of_entry(k)], g, forces);
-        this->add_to_nodes(cell, forces, this->context.nodal.force);
-      }
+            k, this->points[weights().point_of_entry(k)], g, forces[0]);
+      });
     this->add_contributions_of_all_ranks(this->context.nodal.force);
   }
 
@@ -162,18 +225,23 @@ namespace MPM
         // Each point finished in its cell's loop: the cell's nodal values
         // read once for all its points (through the points' property
         // pointers the compiler may not keep them in registers).
-        auto         point = particles.begin();
-        unsigned int k     = 0;
         if (remap_momentum)
           this->zero_touched_entries(nodal.momentum);
-        for (const auto &cell : this->active_cells)
-          {
+        chunk_findings.resize(
+          chunk_count(this->active_cells.size(), cells_per_chunk));
+        this->template for_active_cells<1>(
+          {{remap_momentum ? &nodal.momentum : nullptr}},
+          [&](const unsigned int c,
+              const unsigned int chunk,
+              std::array<VertexValues, 1> &remapped) {
+            const ActiveCell  &cell = this->active_cells[c];
             const VertexValues a_node =
               this->read_nodes(cell, nodal.acceleration);
             const VertexValues v_node =
               this->read_nodes(cell, nodal.velocity_new);
-            VertexValues remapped;
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++point, ++k)
+            auto               point = cell.first_point;
+            const unsigned int end   = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k, ++point)
               {
                 const auto    &N = this->shape_functions[k].value;
                 Tensor<1, dim> a, v_new;
@@ -183,7 +251,8 @@ namespace MPM
                     v_new += N[i] * v_node[i];
                   }
                 double *props = this->points[k];
-                updater.advance(point, props, a, v_new, cell.map, v_max2);
+                updater.advance(
+                  point, props, a, v_new, cell.map, chunk_findings[chunk]);
                 Tensor<2, dim> C;
                 if (fit_affine)
                   {
@@ -196,29 +265,29 @@ namespace MPM
                                               props + this->transfer_slot);
                   }
                 if (remap_momentum)
-                  remap(cell, k, fit_affine ? &C : nullptr, remapped);
+                  remap(cell, k, fit_affine ? &C : nullptr, remapped[0]);
               }
-            if (remap_momentum)
-              this->add_to_nodes(cell, remapped, nodal.momentum);
-          }
+          });
+        v_max2 = record_chunk_findings();
       }
     else
       {
         // 1. Each point's acceleration and velocity, summed over its
-        //    entries (and, with APIC, the sums of its fit).
+        //    entries (and, with APIC, the sums of its fit): one thread,
+        //    since a point's entries lie in several cells.
         const unsigned int n_points = this->points.size();
         point_sum_a.assign(n_points, Tensor<1, dim>());
         point_sum_v.assign(n_points, Tensor<1, dim>());
         if (fit_affine)
           point_affine_fit.assign(n_points, AffineFitSums());
-        unsigned int k = 0;
         for (const auto &cell : this->active_cells)
           {
             const VertexValues a_node =
               this->read_nodes(cell, nodal.acceleration);
             const VertexValues v_node =
               this->read_nodes(cell, nodal.velocity_new);
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            const unsigned int end = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k)
               {
                 const auto    &N = this->shape_functions[k].value;
                 Tensor<1, dim> a, v;
@@ -238,7 +307,8 @@ namespace MPM
         // 2. The points, in the order of point_properties().
         if (fit_affine)
           point_affine.resize(n_points);
-        unsigned int p = 0;
+        typename PointUpdate<dim>::Findings findings;
+        unsigned int                        p = 0;
         for (auto point = particles.begin(); point != particles.end();
              ++point, ++p)
           {
@@ -247,7 +317,7 @@ namespace MPM
                             point_sum_a[p],
                             point_sum_v[p],
                             weights().cell_map_of_point(p),
-                            v_max2);
+                            findings);
             if (fit_affine)
               {
                 const AffineFitSums &sums = point_affine_fit[p];
@@ -259,23 +329,26 @@ namespace MPM
                                         this->points[p] + this->transfer_slot);
               }
           }
+        v_max2 = updater.record(findings);
         // 3. MUSL: the points' new momentum back to the nodes.
         if (remap_momentum)
           {
             this->zero_touched_entries(nodal.momentum);
-            k = 0;
-            for (const auto &cell : this->active_cells)
-              {
-                VertexValues remapped;
-                for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            this->template for_active_cells<1>(
+              {{&nodal.momentum}},
+              [&](const unsigned int c,
+                  const unsigned int,
+                  std::array<VertexValues, 1> &remapped) {
+                const ActiveCell  &cell = this->active_cells[c];
+                const unsigned int end  = cell.first_entry + cell.n_points;
+                for (unsigned int k = cell.first_entry; k < end; ++k)
                   remap(cell,
                         k,
                         fit_affine ?
                           &point_affine[weights().point_of_entry(k)] :
                           nullptr,
-                        remapped);
-                this->add_to_nodes(cell, remapped, nodal.momentum);
-              }
+                        remapped[0]);
+              });
           }
       }
     if (remap_momentum)
@@ -310,75 +383,103 @@ namespace MPM
     const auto update_point = [&](const unsigned int    p,
                                   const Tensor<2, dim> &grad_v,
                                   const Tensor<2, dim> &D,
-                                  const double          cell_size) {
+                                  const double          cell_size,
+                                  typename PointUpdate<dim>::Findings &found) {
       double *props = this->points[p];
-      updater.update_stress(props, grad_v, cell_size);
+      updater.update_stress(props, grad_v, cell_size, found);
       weights().deform_with_point(props, grad_v);
       if (store_gradient)
         Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
     };
     if constexpr (Weights::entries_are_points)
       {
-        unsigned int k = 0;
-        for (const auto &cell : this->active_cells)
-          {
+        const unsigned int n_chunks =
+          chunk_count(this->active_cells.size(), cells_per_chunk);
+        chunk_findings.resize(n_chunks);
+        if (average)
+          chunk_gradients.resize(n_chunks);
+        this->template for_active_cells<0>(
+          {},
+          [&](const unsigned int c,
+              const unsigned int chunk,
+              std::array<VertexValues, 0> &) {
+            const ActiveCell  &cell   = this->active_cells[c];
+            const unsigned int k0     = cell.first_entry;
             const VertexValues v_node = this->read_nodes(cell, velocity);
             // With 'Volumetric strain averaging = cell', the cell's
             // velocity gradients first, to average their traces.
+            std::vector<Tensor<2, dim>> *gradients =
+              average ? &chunk_gradients[chunk] : nullptr;
             if (average)
               {
-                point_gradients.resize(cell.n_points);
+                gradients->resize(cell.n_points);
                 for (unsigned int q = 0; q < cell.n_points; ++q)
-                  point_gradients[q] = entry_gradient(k + q, v_node);
+                  (*gradients)[q] = entry_gradient(k0 + q, v_node);
                 PointUpdate<dim>::average_volumetric_part(
-                  this->points.data() + k,
-                  point_gradients.data(),
-                  cell.n_points);
+                  this->points.data() + k0, gradients->data(), cell.n_points);
               }
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-              update_point(k,
-                           average ? point_gradients[q] :
-                                     entry_gradient(k, v_node),
-                           store_gradient ?
-                             Apic<dim>::second_moment(
-                               this->shape_functions[k].value,
-                               weights().node_offsets(cell, k)) :
-                             Tensor<2, dim>(),
-                           cell.size);
-          }
+            for (unsigned int q = 0; q < cell.n_points; ++q)
+              {
+                const unsigned int k = k0 + q;
+                update_point(k,
+                             average ? (*gradients)[q] :
+                                       entry_gradient(k, v_node),
+                             store_gradient ?
+                               Apic<dim>::second_moment(
+                                 this->shape_functions[k].value,
+                                 weights().node_offsets(cell, k)) :
+                               Tensor<2, dim>(),
+                             cell.size,
+                             chunk_findings[chunk]);
+              }
+          });
       }
     else
       {
-        // grad v_p summed over the point's entries.
+        // grad v_p summed over the point's entries (one thread: a point's
+        // entries lie in several cells).
         const unsigned int n_points = this->points.size();
         point_gradients.assign(n_points, Tensor<2, dim>());
-        unsigned int k = 0;
         for (const auto &cell : this->active_cells)
           {
             const VertexValues v_node = this->read_nodes(cell, velocity);
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            const unsigned int end    = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k)
               point_gradients[weights().point_of_entry(k)] +=
                 entry_gradient(k, v_node);
           }
-        if (average)
-          for (unsigned int c = 0; c + 1 < point_cell_begin.size(); ++c)
-            PointUpdate<dim>::average_volumetric_part(
-              this->points.data() + point_cell_begin[c],
-              point_gradients.data() + point_cell_begin[c],
-              point_cell_begin[c + 1] - point_cell_begin[c]);
         if (store_gradient)
           second_moments(point_second_moment);
-        // The points in the order of their own cells (point_cell_begin).
-        for (unsigned int c = 0; c + 1 < point_cell_begin.size(); ++c)
-          for (unsigned int p = point_cell_begin[c];
-               p < point_cell_begin[c + 1];
-               ++p)
-            update_point(p,
-                         point_gradients[p],
-                         store_gradient ? point_second_moment[p] :
-                                          Tensor<2, dim>(),
-                         point_cell_size[c]);
+        // The points in chunks of their own cells (point_cell_begin).
+        const unsigned int n_point_cells =
+          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
+        chunk_findings.resize(chunk_count(n_point_cells, cells_per_chunk));
+        for_each_chunk(
+          n_point_cells,
+          cells_per_chunk,
+          [&](const unsigned int chunk,
+              const unsigned int first,
+              const unsigned int last) {
+            for (unsigned int c = first; c < last; ++c)
+              {
+                const unsigned int begin = point_cell_begin[c];
+                const unsigned int end   = point_cell_begin[c + 1];
+                if (average)
+                  PointUpdate<dim>::average_volumetric_part(
+                    this->points.data() + begin,
+                    point_gradients.data() + begin,
+                    end - begin);
+                for (unsigned int p = begin; p < end; ++p)
+                  update_point(p,
+                               point_gradients[p],
+                               store_gradient ? point_second_moment[p] :
+                                                Tensor<2, dim>(),
+                               point_cell_size[c],
+                               chunk_findings[chunk]);
+              }
+          });
       }
+    record_chunk_findings();
   }
 
 
@@ -411,34 +512,36 @@ namespace MPM
     };
     if constexpr (!Weights::entries_are_points)
       {
-        // S+: each point's velocity, summed over its entries.
+        // S+: each point's velocity, summed over its entries (one thread).
         point_sum_v.assign(this->points.size(), Tensor<1, dim>());
-        unsigned int k = 0;
         for (const auto &cell : this->active_cells)
           {
             const VertexValues u_node = this->read_nodes(cell, velocity);
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
+            const unsigned int end    = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k)
               point_sum_v[weights().point_of_entry(k)] +=
                 weights().share_of_entry(k) * interpolate(k, u_node);
           }
       }
     // S: the points' momentum back to the nodes with the same weights.
     this->zero_touched_entries(momentum);
-    unsigned int k = 0;
-    for (const auto &cell : this->active_cells)
-      {
-        VertexValues sums;
+    this->template for_active_cells<1>(
+      {{&momentum}},
+      [&](const unsigned int c,
+          const unsigned int,
+          std::array<VertexValues, 1> &sums) {
+        const ActiveCell  &cell = this->active_cells[c];
+        const unsigned int end  = cell.first_entry + cell.n_points;
         if constexpr (Weights::entries_are_points)
           {
             const VertexValues u_node = this->read_nodes(cell, velocity);
-            for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-              project(k, interpolate(k, u_node), sums);
+            for (unsigned int k = cell.first_entry; k < end; ++k)
+              project(k, interpolate(k, u_node), sums[0]);
           }
         else
-          for (unsigned int q = 0; q < cell.n_points; ++q, ++k)
-            project(k, point_sum_v[weights().point_of_entry(k)], sums);
-        this->add_to_nodes(cell, sums, momentum);
-      }
+          for (unsigned int k = cell.first_entry; k < end; ++k)
+            project(k, point_sum_v[weights().point_of_entry(k)], sums[0]);
+      });
     this->add_contributions_of_all_ranks(momentum);
   }
 

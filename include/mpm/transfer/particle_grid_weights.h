@@ -257,18 +257,28 @@ namespace MPM
       const BilinearCellMap *map = nullptr;
       /// BackgroundGrid::cell_size() of the cell.
       double size = 0;
+      /// The index of the cell's first entry in shape_functions (its
+      /// entries are consecutive).
+      unsigned int first_entry = 0;
+      /// Weights whose entries are the points: the cell's first point in
+      /// the ParticleHandler (the others follow it).
+      typename Particles::ParticleHandler<dim>::particle_iterator
+        first_point;
     };
 
     /// Start collecting this step's active cells and nodal entries.
     void
     clear_active_cells();
 
-    /// Append @p cell with @p n entries to active_cells and mark its
-    /// nodal entries as touched.
+    /// Append @p cell with @p n entries (after those of the cells added
+    /// before) to active_cells and mark its nodal entries as touched;
+    /// @p first_point is its first point if the entries are the points.
     void
     add_active_cell(
       const typename Triangulation<dim>::active_cell_iterator &cell,
-      const unsigned int                                       n);
+      const unsigned int                                       n,
+      const typename Particles::ParticleHandler<dim>::particle_iterator
+        &first_point = {});
 
     /// Done adding active cells; returns the shortest edge among them.
     double
