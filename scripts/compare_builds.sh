@@ -6,7 +6,8 @@
 # case, one at a time. Prints every run's wall time of the steps (mpm's
 # 'Done' line), the minima and their ratio, and whether the two runs'
 # statistics files are identical (a change meant to keep the arithmetic
-# must leave them identical to the last digit).
+# must leave them identical to the last digit). On MPM_THREADS threads
+# (default 1).
 #
 # The virtual machines this code was tuned on drifted by up to 25 % within
 # minutes (doc/performance.md): single runs cannot show a change of a few
@@ -33,7 +34,7 @@ trap 'rm -rf "$work"' EXIT
 run() {
   local name="$1" dir="$2"
   (cd "$(dirname "$prm")" &&
-     LD_LIBRARY_PATH="$dir" "$dir/mpm" "$prm" \
+     LD_LIBRARY_PATH="$dir" "$dir/mpm" "$prm" --threads "${MPM_THREADS:-1}" \
        --set "Time stepping/End time=$end_time" \
        --set "Output/Directory=$work/$name" > "$work/$name.log" 2>&1) ||
     { echo "compare_builds.sh: the $name run failed, see its log:" >&2; tail -5 "$work/$name.log" >&2; exit 1; }

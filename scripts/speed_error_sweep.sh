@@ -11,7 +11,7 @@
 #                       3 x 3 points per cell); opt-in, about 10 min
 # Writes doc/speed_error.csv and doc/speed_error.png (error against wall
 # time, one panel per scene, one curve per parameter). Release build, one
-# core. A run stopped by the stability check is recorded as "unstable".
+# core (MPM_THREADS threads, default 1). A run stopped by the stability check is recorded as "unstable".
 # Usage: scripts/speed_error_sweep.sh [scene ...]
 #   (default: vibrating_bar self_weight_column sliding_block; add flume)
 set -euo pipefail
@@ -30,7 +30,7 @@ run() {
   shift 6
   local name="$scene-$parameter-$value"
   name="${name// /_}"
-  if ! /usr/bin/time -f "%M" -o "$out/$name.mem" "$MPM_BUILD_DIR/mpm" "$prm" "$@" \
+  if ! /usr/bin/time -f "%M" -o "$out/$name.mem" "$MPM_BUILD_DIR/mpm" "$prm" --threads "${MPM_THREADS:-1}" "$@" \
       --set "Output/Write particles=false" --set "Output/Write mesh=false" \
       --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1; then
     printf "%s,%s,%s,,,,,,unstable,%s\n" "$scene" "$parameter" "$value" "$measure" | tee -a "$csv"

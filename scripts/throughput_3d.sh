@@ -5,7 +5,8 @@
 # 1e5 and 1e6 points (mesh refined 0, 1, 2 times; 3 or 4 points per cell
 # per direction), over its first 0.2 s (the mass starts to slide). The rate
 # counts only the steps (mpm's 'Done' line), not the set-up, whose wall
-# time is listed too. Writes doc/throughput_3d.csv.
+# time is listed too. On MPM_THREADS threads (default 1). Writes
+# doc/throughput_3d.csv.
 # Usage: scripts/throughput_3d.sh
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
@@ -17,7 +18,7 @@ echo "refinements,points_per_cell,cells,points,steps,total_wall_s,step_wall_s,pa
 for setting in "0 3" "1 3" "2 4"; do
   read -r refinements ppc <<< "$setting"
   name="landslide-r$refinements-p$ppc"
-  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/landslide_valley_3d.prm" \
+  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/landslide_valley_3d.prm" --threads "${MPM_THREADS:-1}" \
     --set "Mesh/Global refinements=$refinements" \
     --set "Material points/slide/Points per cell=$ppc" \
     --set "Time stepping/End time=0.2" \

@@ -40,12 +40,13 @@ namespace MPM
                               points.begin());
         it = points.end();
       }
+    const double shortest_edge = this->finish_active_cells();
     // Their shape functions, cell by cell on the available threads, with
     // the cell's geometry as the shape functions take it: its bilinear map
     // in 2D, its vertices in 3D.
     for_each_chunk(
       this->active_cells.size(),
-      this->cells_per_chunk,
+      this->cell_chunk_size,
       [this](const unsigned int, const unsigned int first, const unsigned int last) {
         for (unsigned int c = first; c < last; ++c)
           {
@@ -64,7 +65,7 @@ namespace MPM
               }
           }
       });
-    return this->finish_active_cells();
+    return shortest_edge;
   }
 
 

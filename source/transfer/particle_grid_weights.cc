@@ -1,6 +1,9 @@
+#include <deal.II/base/multithread_info.h>
+
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/point_domains.h>
 
+#include <algorithm>
 #include <limits>
 
 namespace MPM
@@ -54,6 +57,7 @@ namespace MPM
     dof_is_touched.assign(v.locally_owned_size() +
                             v.get_partitioner()->n_ghost_indices(),
                           0);
+    chunk_of_dof.assign(dof_is_touched.size(), shared_by_chunks);
     touched_dofs.clear();
   }
 
@@ -123,6 +127,36 @@ namespace MPM
   {
     for (const unsigned int i : touched_dofs)
       dof_is_touched[i] = 0;
+
+    const unsigned int n_cells   = active_cells.size();
+    const unsigned int n_threads = MultithreadInfo::n_threads();
+    cell_chunk_size =
+      n_threads == 1 ?
+        std::max(n_cells, 1u) :
+        std::max(32u, (n_cells + 8 * n_threads - 1) / (8 * n_threads));
+    // The vertices that cells of two chunks share (by the first
+    // component's entry: a vertex's components are touched by the same
+    // cells).
+    const unsigned int unseen = shared_by_chunks - 1;
+    for (const unsigned int i : touched_dofs)
+      chunk_of_dof[i] = unseen;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      for (const auto &vertex_dofs : active_cells[c].dofs)
+        {
+          unsigned int &chunk = chunk_of_dof[vertex_dofs[0]];
+          const unsigned int this_chunk = c / cell_chunk_size;
+          if (chunk == unseen)
+            chunk = this_chunk;
+          else if (chunk != this_chunk)
+            chunk = shared_by_chunks;
+        }
+    for (auto &cell : active_cells)
+      {
+        cell.vertices_shared_with_other_chunks = 0;
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          if (chunk_of_dof[cell.dofs[i][0]] == shared_by_chunks)
+            cell.vertices_shared_with_other_chunks |= (1u << i);
+      }
     return shortest_edge;
   }
 

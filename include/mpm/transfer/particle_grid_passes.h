@@ -100,11 +100,6 @@ namespace MPM
   protected:
     using typename ParticleGridWeights<dim>::ActiveCell;
 
-    /// Active cells per chunk of the threaded loops (for_each_chunk()):
-    /// some ten microseconds of work, so that TBB's cost per chunk is
-    /// small.
-    static constexpr unsigned int cells_per_chunk = 64;
-
     /**
      * The first point (index into point_properties()) of each cell holding
      * points, and one past the last: filled by prepare() of weights whose
@@ -117,18 +112,21 @@ namespace MPM
   private:
     /**
      * Call @p body(c, chunk, sums) for every active cell c (chunk: the
-     * index of its chunk, for the body's per-chunk results), on the
-     * available threads, and add the cell's per-vertex sums[f] to
-     * *targets[f] (skipped where nullptr). On several threads the sums are
-     * kept per cell and added afterwards in the order of the cells, as one
-     * thread adds them: the nodal values are bit for bit the same.
+     * index of its chunk of cell_chunk_size cells, for the body's
+     * per-chunk results), on the available threads, and add the cell's
+     * per-vertex sums[f] to *targets[f] (skipped where nullptr): at the
+     * vertices of cells of one chunk by that chunk's thread, at vertices
+     * that cells of several chunks share after the threaded loop; in the
+     * order of the cells either way, so that the nodal values are bit for
+     * bit those of one thread, for any cut into chunks.
      */
     template <std::size_t n_targets, typename Body>
     void
     for_active_cells(const std::array<NodalVector *, n_targets> &targets,
                      const Body                                 &body);
 
-    /// for_active_cells()'s sums of each cell (on several threads).
+    /// for_active_cells()'s sums of the cells with vertices shared with
+    /// other chunks.
     std::vector<VertexValues> cell_sums;
     /// What the point updates of each chunk of cells found.
     std::vector<typename PointUpdate<dim>::Findings> chunk_findings;

@@ -18,17 +18,19 @@ namespace MPM
     const std::array<NodalVector *, n_targets> &targets,
     const Body                                 &body)
   {
-    const unsigned int n_cells = this->active_cells.size();
-    const bool         serial  = chunks_run_serially(n_cells, cells_per_chunk);
-    const bool         any_target =
-      std::any_of(targets.begin(), targets.end(), [](const NodalVector *v) {
-        return v != nullptr;
-      });
-    if (!serial && any_target)
+    // A node whose cells all lie in one chunk receives their sums from
+    // that chunk's thread, in the order of the cells; a node of cells of
+    // several chunks receives them all after the threaded loop, in the
+    // order of the cells. Either way the order of one thread.
+    const unsigned int n_cells    = this->active_cells.size();
+    const unsigned int chunk_size = this->cell_chunk_size;
+    // Grown only: value-initialising it again at every size change (the
+    // passes have 1 to 3 targets) would cost a write of the whole array.
+    if (cell_sums.size() < std::size_t(n_cells) * n_targets)
       cell_sums.resize(std::size_t(n_cells) * n_targets);
     for_each_chunk(
       n_cells,
-      cells_per_chunk,
+      chunk_size,
       [&](const unsigned int chunk,
           const unsigned int first,
           const unsigned int last) {
@@ -36,25 +38,39 @@ namespace MPM
           {
             std::array<VertexValues, n_targets> sums;
             body(c, chunk, sums);
+            const ActiveCell   &cell   = this->active_cells[c];
+            const unsigned char shared = cell.vertices_shared_with_other_chunks;
             for (unsigned int f = 0; f < n_targets; ++f)
               if (targets[f] != nullptr)
                 {
-                  if (serial)
-                    this->add_to_nodes(this->active_cells[c],
-                                       sums[f],
-                                       *targets[f]);
+                  if (shared == 0)
+                    this->add_to_nodes(cell, sums[f], *targets[f]);
                   else
-                    cell_sums[std::size_t(c) * n_targets + f] = sums[f];
+                    {
+                      for (unsigned int i = 0; i < n_vertices; ++i)
+                        if ((shared & (1u << i)) == 0)
+                          for (unsigned int d = 0; d < dim; ++d)
+                            targets[f]->local_element(cell.dofs[i][d]) +=
+                              sums[f][i][d];
+                      cell_sums[std::size_t(c) * n_targets + f] = sums[f];
+                    }
                 }
           }
       });
-    if (!serial && any_target)
-      for (unsigned int c = 0; c < n_cells; ++c)
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (const unsigned char shared =
+            this->active_cells[c].vertices_shared_with_other_chunks)
         for (unsigned int f = 0; f < n_targets; ++f)
           if (targets[f] != nullptr)
-            this->add_to_nodes(this->active_cells[c],
-                               cell_sums[std::size_t(c) * n_targets + f],
-                               *targets[f]);
+            {
+              const VertexValues &sums =
+                cell_sums[std::size_t(c) * n_targets + f];
+              for (unsigned int i = 0; i < n_vertices; ++i)
+                if ((shared & (1u << i)) != 0)
+                  for (unsigned int d = 0; d < dim; ++d)
+                    targets[f]->local_element(
+                      this->active_cells[c].dofs[i][d]) += sums[i][d];
+            }
   }
 
 
@@ -228,7 +244,7 @@ namespace MPM
         if (remap_momentum)
           this->zero_touched_entries(nodal.momentum);
         chunk_findings.resize(
-          chunk_count(this->active_cells.size(), cells_per_chunk));
+          chunk_count(this->active_cells.size(), this->cell_chunk_size));
         this->template for_active_cells<1>(
           {{remap_momentum ? &nodal.momentum : nullptr}},
           [&](const unsigned int c,
@@ -394,7 +410,7 @@ namespace MPM
     if constexpr (Weights::entries_are_points)
       {
         const unsigned int n_chunks =
-          chunk_count(this->active_cells.size(), cells_per_chunk);
+          chunk_count(this->active_cells.size(), this->cell_chunk_size);
         chunk_findings.resize(n_chunks);
         if (average)
           chunk_gradients.resize(n_chunks);
@@ -453,10 +469,11 @@ namespace MPM
         // The points in chunks of their own cells (point_cell_begin).
         const unsigned int n_point_cells =
           point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
-        chunk_findings.resize(chunk_count(n_point_cells, cells_per_chunk));
+        chunk_findings.resize(
+          chunk_count(n_point_cells, this->cell_chunk_size));
         for_each_chunk(
           n_point_cells,
-          cells_per_chunk,
+          this->cell_chunk_size,
           [&](const unsigned int chunk,
               const unsigned int first,
               const unsigned int last) {

@@ -264,6 +264,13 @@ namespace MPM
       /// the ParticleHandler (the others follow it).
       typename Particles::ParticleHandler<dim>::particle_iterator
         first_point;
+      /**
+       * Bit i set: vertex i of the cell is also a vertex of a cell in
+       * another chunk of this step (finish_active_cells()), so that the
+       * cell's sums there are added after the threaded loop, in the order
+       * of the cells.
+       */
+      unsigned char vertices_shared_with_other_chunks = 0;
     };
 
     /// Start collecting this step's active cells and nodal entries.
@@ -280,9 +287,21 @@ namespace MPM
       const typename Particles::ParticleHandler<dim>::particle_iterator
         &first_point = {});
 
-    /// Done adding active cells; returns the shortest edge among them.
+    /**
+     * Done adding active cells: cut them into the chunks of the threaded
+     * loops (cell_chunk_size), mark the vertices that cells of different
+     * chunks share, and return the shortest edge among the cells.
+     */
     double
     finish_active_cells();
+
+    /**
+     * Active cells per chunk of the threaded loops of this step
+     * (for_each_chunk()): all cells on one thread, else about eight chunks
+     * per thread and at least 32 cells (some microseconds of work) per
+     * chunk. Any cut gives the same results (ParticleGridPasses).
+     */
+    unsigned int cell_chunk_size = 1;
 
     /// The values of @p v at the vertices of @p cell.
     static VertexValues
@@ -391,6 +410,11 @@ namespace MPM
     double                     shortest_edge = 0;
     std::vector<unsigned int>  touched_dofs;
     std::vector<unsigned char> dof_is_touched;
+    /// Per local nodal entry touched this step: the chunk of the cells
+    /// that touch it, or shared_by_chunks (finish_active_cells()).
+    std::vector<unsigned int>  chunk_of_dof;
+    static constexpr unsigned int shared_by_chunks =
+      numbers::invalid_unsigned_int;
   };
 
   /**
