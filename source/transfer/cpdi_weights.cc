@@ -9,6 +9,7 @@
 
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/transfer/cpdi_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
 
@@ -180,20 +181,47 @@ namespace MPM
     point_properties.resize(n_points);
     point_cell_map.resize(n_points);
 
-    // This step's corners, in the order of the points (reused storage).
+    // This step's corners, n_corners per point in the order of the points
+    // (reused storage).
     auto &corners = located_corners;
-    corners.clear();
+    corners.resize(std::size_t(n_points) * n_corners);
 
-    unsigned int p = 0;
+    // The cells holding points, with their first points.
     this->point_cell_begin.clear();
     this->point_cell_size.clear();
+    point_cells.clear();
+    first_point_of_cell.clear();
+    unsigned int n_counted = 0;
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
-        this->point_cell_begin.push_back(p);
         const CellIterator cell   = it->get_surrounding_cell();
-        this->point_cell_size.push_back(this->context.grid.cell_size(cell));
         const auto         points = particle_handler.particles_in_cell(cell);
-        const auto        &patch  = cell_patches[cell->active_cell_index()];
+        this->point_cell_begin.push_back(n_counted);
+        this->point_cell_size.push_back(this->context.grid.cell_size(cell));
+        point_cells.push_back(cell);
+        first_point_of_cell.push_back(points.begin());
+        n_counted += particle_handler.n_particles_in_cell(cell);
+        it = points.end();
+      }
+    this->point_cell_begin.push_back(n_counted);
+    AssertThrow(n_counted == n_points, ExcInternalError());
+
+    // Each point's corners, cell by cell on the available threads (a
+    // cell's points on one thread: each tries its previous point's cells
+    // first). An inverted domain stops the run with the first such point
+    // in the order of the points, whatever the number of threads.
+    const unsigned int n_point_cells = point_cells.size();
+    const unsigned int chunk_size    = chunk_size_for(n_point_cells);
+    std::vector<std::string> inverted(chunk_count(n_point_cells, chunk_size));
+    for_each_chunk(n_point_cells, chunk_size, [&](const unsigned int chunk,
+                                                   const unsigned int first_cell,
+                                                   const unsigned int last_cell) {
+    for (unsigned int pc = first_cell; pc < last_cell && inverted[chunk].empty(); ++pc)
+      {
+        const CellIterator &cell  = point_cells[pc];
+        unsigned int        p     = this->point_cell_begin[pc];
+        const unsigned int  p_end = this->point_cell_begin[pc + 1];
+        const auto         &patch = cell_patches[cell->active_cell_index()];
         // The patch's geometry, looked up once for the cell's points, and
         // where each corner was found for the previous point (the points
         // of a cell are alike: tried first).
@@ -207,7 +235,8 @@ namespace MPM
           }
         std::array<unsigned int, n_corners> last_found;
         last_found.fill(0);
-        for (auto point = points.begin(); point != points.end(); ++point, ++p)
+        auto point = first_point_of_cell[pc];
+        for (; p < p_end; ++point, ++p)
           {
             double *props       = point->get_properties().data();
             point_properties[p] = props;
@@ -356,23 +385,26 @@ namespace MPM
                   << " at (" << x_p << ") is inverted (domain vectors "
                   << R << " as a parallelogram): the material it represents has turned inside "
                   << "out; reduce the time step.";
-                throw std::runtime_error(s.str());
+                inverted[chunk] = s.str();
+                break;
               }
             // The affine centre (see corner_offset).
             Tensor<1, dim> shift;
             for (unsigned int c = 0; c < n_corners; ++c)
               shift += alpha[c] * (x[c] - x_p);
             for (unsigned int c = 0; c < n_corners; ++c)
-              corners.push_back({corner_cell[c],
-                                 p,
-                                 xi[c],
-                                 alpha[c],
-                                 beta[c],
-                                 (x[c] - x_p) - shift});
+              corners[std::size_t(p) * n_corners + c] = {corner_cell[c],
+                                                         p,
+                                                         xi[c],
+                                                         alpha[c],
+                                                         beta[c],
+                                                         (x[c] - x_p) - shift};
           }
-        it = points.end();
       }
-    this->point_cell_begin.push_back(p);
+    });
+    for (const std::string &message : inverted)
+      if (!message.empty())
+        throw std::runtime_error(message);
 
     // Group the corners by cell (a counting sort in the order in which the
     // cells were first touched), so that each pass adds to a cell's nodes
@@ -404,22 +436,34 @@ namespace MPM
     const bool affine = this->affine();
     if (affine)
       corner_offset.resize(corners.size());
-    for (const auto &corner : corners)
-      {
-        const unsigned int k =
-          next[slot_of_cell[corner.cell->active_cell_index()]]++;
-        if constexpr (dim == 2)
-          this->shape_functions[k].reinit(grid.bilinear_map(corner.cell),
-                                          corner.xi);
-        else
-          this->shape_functions[k].reinit(grid.cell_vertices(corner.cell),
-                                    corner.xi);
-        corner_point[k] = corner.point;
-        corner_alpha[k] = corner.alpha;
-        corner_beta[k]  = corner.beta;
-        if (affine)
-          corner_offset[k] = corner.offset;
-      }
+    // Each corner's place among its cell's, then (on the available
+    // threads) its shape functions there.
+    entry_of_corner.resize(corners.size());
+    for (std::size_t j = 0; j < corners.size(); ++j)
+      entry_of_corner[j] =
+        next[slot_of_cell[corners[j].cell->active_cell_index()]]++;
+    for_each_chunk(corners.size(),
+                   chunk_size_for(corners.size()),
+                   [&](const unsigned int,
+                       const unsigned int first,
+                       const unsigned int last) {
+                     for (unsigned int j = first; j < last; ++j)
+                       {
+                         const LocatedCorner &corner = corners[j];
+                         const unsigned int   k      = entry_of_corner[j];
+                         if constexpr (dim == 2)
+                           this->shape_functions[k].reinit(
+                             grid.bilinear_map(corner.cell), corner.xi);
+                         else
+                           this->shape_functions[k].reinit(
+                             grid.cell_vertices(corner.cell), corner.xi);
+                         corner_point[k] = corner.point;
+                         corner_alpha[k] = corner.alpha;
+                         corner_beta[k]  = corner.beta;
+                         if (affine)
+                           corner_offset[k] = corner.offset;
+                       }
+                   });
     for (const CellIterator &cell : touched)
       slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
 

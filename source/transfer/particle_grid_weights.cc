@@ -1,5 +1,4 @@
-#include <deal.II/base/multithread_info.h>
-
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/point_domains.h>
 
@@ -128,12 +127,8 @@ namespace MPM
     for (const unsigned int i : touched_dofs)
       dof_is_touched[i] = 0;
 
-    const unsigned int n_cells   = active_cells.size();
-    const unsigned int n_threads = MultithreadInfo::n_threads();
-    cell_chunk_size =
-      n_threads == 1 ?
-        std::max(n_cells, 1u) :
-        std::max(32u, (n_cells + 8 * n_threads - 1) / (8 * n_threads));
+    const unsigned int n_cells = active_cells.size();
+    cell_chunk_size            = chunk_size_for(n_cells);
     // The vertices that cells of two chunks share (by the first
     // component's entry: a vertex's components are touched by the same
     // cells).

@@ -18,6 +18,23 @@ namespace MPM
   }
 
 
+  /**
+   * The chunk size for a loop over @p n items (cells, points, corners):
+   * all of them on one thread; else about eight chunks per thread, for
+   * balance, of at least 32 items, so that TBB's cost per chunk (about a
+   * microsecond) stays small. The threaded loops of this code give the
+   * same results for any chunk size.
+   */
+  inline unsigned int
+  chunk_size_for(const unsigned int n)
+  {
+    const unsigned int n_threads = MultithreadInfo::n_threads();
+    return n_threads == 1 ?
+             std::max(n, 1u) :
+             std::max(32u, (n + 8 * n_threads - 1) / (8 * n_threads));
+  }
+
+
   /// Whether for_each_chunk() runs its chunks in order on the calling
   /// thread (one thread, or a single chunk).
   inline bool

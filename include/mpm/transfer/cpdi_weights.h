@@ -142,6 +142,13 @@ namespace MPM
       Tensor<1, dim> offset;
     };
     std::vector<LocatedCorner> located_corners;
+    /// Where each of located_corners goes among the entries.
+    std::vector<unsigned int> entry_of_corner;
+    /// The cells holding points this step, and each one's first point.
+    std::vector<typename Triangulation<dim>::active_cell_iterator>
+      point_cells;
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+      first_point_of_cell;
     /// Each active cell's slot among the cells holding corners
     /// (invalid_unsigned_int between steps).
     std::vector<unsigned int> corner_slot_of_cell;

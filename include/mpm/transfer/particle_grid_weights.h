@@ -297,9 +297,8 @@ namespace MPM
 
     /**
      * Active cells per chunk of the threaded loops of this step
-     * (for_each_chunk()): all cells on one thread, else about eight chunks
-     * per thread and at least 32 cells (some microseconds of work) per
-     * chunk. Any cut gives the same results (ParticleGridPasses).
+     * (for_each_chunk(), chunk_size_for()). Any cut gives the same results
+     * (ParticleGridPasses).
      */
     unsigned int cell_chunk_size = 1;
 
