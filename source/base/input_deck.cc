@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -58,6 +59,34 @@ namespace MPM
   }
 
 
+  namespace
+  {
+    /**
+     * The value of the command line option @p name at argv[@p i], given as
+     * "NAME VALUE" (then @p i moves to VALUE) or "NAME=VALUE"; none if
+     * @p arg is another option. A missing value is an InputError that
+     * says what @p expected.
+     */
+    std::optional<std::string>
+    option_value(const std::string &arg,
+                 const std::string &name,
+                 int               &i,
+                 const int          argc,
+                 char             **argv,
+                 const std::string &expected)
+    {
+      if (arg == name)
+        {
+          check_input(i + 1 < argc, name + " needs an argument: " + expected + ".");
+          return std::string(argv[++i]);
+        }
+      if (arg.rfind(name + "=", 0) == 0)
+        return arg.substr(name.size() + 1);
+      return std::nullopt;
+    }
+  } // namespace
+
+
   CommandLine
   parse_command_line(int argc, char **argv)
   {
@@ -71,40 +100,23 @@ namespace MPM
           cl.material_point_driver = true;
         else if (arg == "--help" || arg == "-h")
           cl.show_help = true;
-        else if (arg == "--set" || arg.rfind("--set=", 0) == 0)
+        else if (const auto assignment =
+                   option_value(arg, "--set", i, argc, argv, "\"Subsection/Entry=value\""))
           {
-            std::string assignment;
-            if (arg == "--set")
-              {
-                check_input(i + 1 < argc,
-                            "--set needs an argument \"Subsection/Entry=value\".");
-                assignment = argv[++i];
-              }
-            else
-              assignment = arg.substr(6);
-            const auto eq = assignment.find('=');
+            const auto eq = assignment->find('=');
             check_input(eq != std::string::npos && eq > 0,
-                        "--set \"" + assignment +
+                        "--set \"" + *assignment +
                           "\": expected \"Subsection/Entry=value\".");
-            cl.overrides.emplace_back(Utilities::trim(assignment.substr(0, eq)),
-                                      Utilities::trim(assignment.substr(eq + 1)));
+            cl.overrides.emplace_back(Utilities::trim(assignment->substr(0, eq)),
+                                      Utilities::trim(assignment->substr(eq + 1)));
           }
-        else if (arg == "--threads" || arg.rfind("--threads=", 0) == 0)
+        else if (const auto value = option_value(
+                   arg, "--threads", i, argc, argv, "a number of threads (>= 1)"))
           {
-            std::string value;
-            if (arg == "--threads")
-              {
-                check_input(i + 1 < argc,
-                            "--threads needs a number of threads (>= 1).");
-                value = argv[++i];
-              }
-            else
-              value = arg.substr(10);
-            char         *end = nullptr;
-            const long    n   = std::strtol(value.c_str(), &end, 10);
-            check_input(!value.empty() && *end == '\0' && n >= 1 &&
-                          n <= 4096,
-                        "--threads " + value +
+            char      *end = nullptr;
+            const long n   = std::strtol(value->c_str(), &end, 10);
+            check_input(!value->empty() && *end == '\0' && n >= 1 && n <= 4096,
+                        "--threads " + *value +
                           ": expected a number of threads from 1 to 4096.");
             cl.n_threads = static_cast<unsigned int>(n);
           }
