@@ -8,12 +8,13 @@
 # runs MPM_REPEATS times (default 3) and the run with the median rate is
 # kept; MPM_THREADS lists the threads per run (default "1"; e.g. "1 2").
 # Writes doc/throughput.csv.
-# Usage: scripts/throughput_benchmark.sh [particle-steps per run, default 4e6]
-# (each run takes max(20, that / points) steps: long enough to time)
+# Usage: scripts/throughput_benchmark.sh [particle-steps per run, default 2.4e7]
+# (each run takes max(20, that / points) steps: 2-3 s of stepping on one
+# core of the machines in doc/performance.md, long enough to time)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
-work="${1:-4e6}"
+work="${1:-2.4e7}"
 out="output-throughput"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/throughput.csv"

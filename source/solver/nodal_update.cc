@@ -3,6 +3,7 @@
 // (constrained for the strain rate), and the nodal update (forces, basal
 // laws, the wall constraints), doc/algorithm.md steps 2 and 6.
 
+#include <mpm/parallel/thread_chunks.h>
 #include <mpm/solver/simulator.h>
 
 #include <cmath>
@@ -14,12 +15,11 @@ namespace MPM
   Simulator<dim>::compute_nodal_velocity(NodalVector &velocity_out)
   {
     TimerOutput::Scope t(timer, "nodal update");
-    for (const unsigned int i : weights->active_dofs())
-      {
-        const double m = nodal.mass.local_element(i);
-        velocity_out.local_element(i) =
-          m > 0 ? nodal.momentum.local_element(i) / m : 0.;
-      }
+    for_each_active_dof([&](const unsigned int i) {
+      const double m = nodal.mass.local_element(i);
+      velocity_out.local_element(i) =
+        m > 0 ? nodal.momentum.local_element(i) / m : 0.;
+    });
     // The strain rate's velocity: a node the last nodal update held on its
     // wall stays held (BoundaryConditions::Contact).
     boundary_conditions.project_velocity(
@@ -34,19 +34,18 @@ namespace MPM
     TimerOutput::Scope t(timer, "nodal update");
     const double       dt    = time_step;
     const double       alpha = time_stepping.local_damping_at(time);
-    for (const unsigned int i : weights->active_dofs())
-      {
-        const double m = nodal.mass.local_element(i);
-        double       f = nodal.force.local_element(i);
-        if (alpha > 0)
-          {
-            // Cundall's local damping: a force against the motion,
-            // proportional to the unbalanced force.
-            const double v = nodal.velocity.local_element(i);
-            f -= alpha * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
-          }
-        nodal.acceleration.local_element(i) = m > 0 ? f / m : 0.;
-      }
+    for_each_active_dof([&](const unsigned int i) {
+      const double m = nodal.mass.local_element(i);
+      double       f = nodal.force.local_element(i);
+      if (alpha > 0)
+        {
+          // Cundall's local damping: a force against the motion,
+          // proportional to the unbalanced force.
+          const double v = nodal.velocity.local_element(i);
+          f -= alpha * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
+        }
+      nodal.acceleration.local_element(i) = m > 0 ? f / m : 0.;
+    });
     // The step starts from the velocity the points brought, u = p/m, not
     // from nodal.velocity, in which compute_nodal_velocity() has already
     // removed the normal velocity into the walls (for the stress update).
@@ -61,22 +60,44 @@ namespace MPM
       const double m = nodal.mass.local_element(i);
       return m > 0 ? nodal.momentum.local_element(i) / m : 0.;
     };
-    for (const unsigned int i : weights->active_dofs())
+    for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) = brought_velocity(i);
+    });
     boundary_conditions.apply_friction(nodal.mass,
                                        nodal.velocity_new,
                                        nodal.acceleration,
                                        dt);
-    for (const unsigned int i : weights->active_dofs())
+    for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) +=
-        dt * nodal.acceleration.local_element(i);
+      dt * nodal.acceleration.local_element(i);
+    });
     boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
     // The acceleration consistent with the constrained velocity change
     // from u, so that the FLIP update of the points respects the
     // constraints too.
-    for (const unsigned int i : weights->active_dofs())
+    for_each_active_dof([&](const unsigned int i) {
       nodal.acceleration.local_element(i) =
-        (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
+      (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
+    });
+  }
+
+
+  template <int dim>
+  template <typename Body>
+  void
+  Simulator<dim>::for_each_active_dof(const Body &body) const
+  {
+    // Entry by entry, each on its own: the same numbers on any number of
+    // threads.
+    const std::vector<unsigned int> &dofs = weights->active_dofs();
+    for_each_chunk(dofs.size(),
+                   8 * chunk_size_for(dofs.size()),
+                   [&](const unsigned int,
+                       const unsigned int first,
+                       const unsigned int last) {
+                     for (unsigned int j = first; j < last; ++j)
+                       body(dofs[j]);
+                   });
   }
 
 

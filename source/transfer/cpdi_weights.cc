@@ -213,195 +213,200 @@ namespace MPM
     const unsigned int n_point_cells = point_cells.size();
     const unsigned int chunk_size    = chunk_size_for(n_point_cells);
     std::vector<std::string> inverted(chunk_count(n_point_cells, chunk_size));
-    for_each_chunk(n_point_cells, chunk_size, [&](const unsigned int chunk,
-                                                   const unsigned int first_cell,
-                                                   const unsigned int last_cell) {
-    for (unsigned int pc = first_cell; pc < last_cell && inverted[chunk].empty(); ++pc)
-      {
-        const CellIterator &cell  = point_cells[pc];
-        unsigned int        p     = this->point_cell_begin[pc];
-        const unsigned int  p_end = this->point_cell_begin[pc + 1];
-        const auto         &patch = cell_patches[cell->active_cell_index()];
-        // The patch's geometry, looked up once for the cell's points, and
-        // where each corner was found for the previous point (the points
-        // of a cell are alike: tried first).
-        std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
-        std::array<const BilinearCellMap *, 64>                   map_of;
-        AssertThrow(patch.size() <= 64, ExcInternalError());
-        for (unsigned int i = 0; i < patch.size(); ++i)
+    for_each_chunk(
+      n_point_cells,
+      chunk_size,
+      [&](const unsigned int chunk,
+          const unsigned int first_cell,
+          const unsigned int last_cell) {
+        for (unsigned int pc = first_cell;
+             pc < last_cell && inverted[chunk].empty();
+             ++pc)
           {
-            vertices_of[i] = &grid.cell_vertices(patch[i]);
-            map_of[i] = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
-          }
-        std::array<unsigned int, n_corners> last_found;
-        last_found.fill(0);
-        auto point = first_point_of_cell[pc];
-        for (; p < p_end; ++point, ++p)
-          {
-            double *props       = point->get_properties().data();
-            point_properties[p] = props;
-            point_cell_map[p] =
-              dim == 2 ? &grid.bilinear_map(cell) : nullptr;
-            // A point without a domain yet (new, or read from a file) gets
-            // the one of PointDomains::initial_domain().
-            auto D = PointDomains<dim>::read(props + domain_slot);
-            if (D[0].norm_square() == 0)
+            const CellIterator &cell  = point_cells[pc];
+            unsigned int        p     = this->point_cell_begin[pc];
+            const unsigned int  p_end = this->point_cell_begin[pc + 1];
+            const auto         &patch = cell_patches[cell->active_cell_index()];
+            // The patch's geometry, looked up once for the cell's points, and
+            // where each corner was found for the previous point (the points
+            // of a cell are alike: tried first).
+            std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
+            std::array<const BilinearCellMap *, 64>                   map_of;
+            AssertThrow(patch.size() <= 64, ExcInternalError());
+            for (unsigned int i = 0; i < patch.size(); ++i)
               {
-                D = PointDomains<dim>::initial_domain(
-                  grid.cell_vertices(cell),
-                  point->get_reference_location(),
-                  props[Layout::volume]);
-                PointDomains<dim>::write(D, props + domain_slot);
-                props[domain_slot + PointDomains<dim>::scale_slot] = 1;
+                vertices_of[i] = &grid.cell_vertices(patch[i]);
+                map_of[i] = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
               }
-            const Point<dim> x_p = point->get_location();
-            std::array<Point<dim>, n_corners>   x;
-            std::array<CellIterator, n_corners> corner_cell;
-            std::array<Point<dim>, n_corners>   xi;
-            // Whether the corners are still x_p + s D_c (none moved onto a
-            // cell).
-            bool parallelepiped = true;
-            // Whether @p y lies within 2 % of the reference cell of
-            // @p candidate; if so @p y is moved onto the cell (its
-            // reference coordinates clamped to [0, 1]) and @p eta are they,
-            // with corner_cell set.
-            const auto nearly_contains = [&](const CellIterator &candidate,
-                                             Point<dim>         &y,
-                                             Point<dim>         &eta) {
-              const auto &vertices = grid.cell_vertices(candidate);
-              if (!in_bounding_box<dim>(vertices, y, 0.05))
-                return false;
-              InverseMappingResult<dim> result;
-              if constexpr (dim == 2)
-                result = grid.bilinear_map(candidate).inverse(y);
-              else
-                result = inverse_map_newton<dim>(vertices, y);
-              if (!result.success || !inside_unit_cell(result.xi, 0.02))
-                return false;
-              for (unsigned int d = 0; d < dim; ++d)
-                eta[d] = std::min(1., std::max(0., result.xi[d]));
-              y                  = map_unit_to_real<dim>(vertices, eta);
-              parallelepiped = false;
-              return true;
-            };
-            // Whether every corner of the domain scaled by s about x_p
-            // lies in the patch (and where).
-            const auto locate_corners = [&](const double s) {
-              parallelepiped = true;
-              for (unsigned int c = 0; c < n_corners; ++c)
-                {
-                  x[c] =
-                    x_p + s * D[c];
-                  bool found = false;
-                  for (unsigned int j = 0; j <= patch.size(); ++j)
-                    {
-                      // The previous point's cell of this corner first.
-                      const unsigned int i =
-                        j == 0 ? last_found[c] :
-                                 (j - 1 == last_found[c] ? 0 : j - 1);
-                      if (j > 0 && j - 1 == 0 && last_found[c] == 0)
-                        continue;
-                      if (cell_contains<dim>(*vertices_of[i],
-                                             map_of[i],
-                                             x[c],
-                                             xi[c]))
-                        {
-                          corner_cell[c] = patch[i];
-                          last_found[c]  = i;
-                          found          = true;
-                          break;
-                        }
-                    }
-                  // Just outside every cell of the patch (a domain built
-                  // from the Jacobian at the point pokes out of a
-                  // distorted boundary cell by O(distortion * size^2)):
-                  // moved onto the nearest cell's boundary.
-                  for (unsigned int i = 0; !found && i < patch.size(); ++i)
-                    if (nearly_contains(patch[i], x[c], xi[c]))
-                      {
-                        corner_cell[c] = patch[i];
-                        found          = true;
-                      }
-                  if (!found)
+            std::array<unsigned int, n_corners> last_found;
+            last_found.fill(0);
+            auto point = first_point_of_cell[pc];
+            for (; p < p_end; ++point, ++p)
+              {
+                double *props       = point->get_properties().data();
+                point_properties[p] = props;
+                point_cell_map[p] =
+                  dim == 2 ? &grid.bilinear_map(cell) : nullptr;
+                // A point without a domain yet (new, or read from a file) gets
+                // the one of PointDomains::initial_domain().
+                auto D = PointDomains<dim>::read(props + domain_slot);
+                if (D[0].norm_square() == 0)
+                  {
+                    D = PointDomains<dim>::initial_domain(
+                      grid.cell_vertices(cell),
+                      point->get_reference_location(),
+                      props[Layout::volume]);
+                    PointDomains<dim>::write(D, props + domain_slot);
+                    props[domain_slot + PointDomains<dim>::scale_slot] = 1;
+                  }
+                const Point<dim> x_p = point->get_location();
+                std::array<Point<dim>, n_corners>   x;
+                std::array<CellIterator, n_corners> corner_cell;
+                std::array<Point<dim>, n_corners>   xi;
+                // Whether the corners are still x_p + s D_c (none moved onto a
+                // cell).
+                bool parallelepiped = true;
+                // Whether @p y lies within 2 % of the reference cell of
+                // @p candidate; if so @p y is moved onto the cell (its
+                // reference coordinates clamped to [0, 1]) and @p eta are they,
+                // with corner_cell set.
+                const auto nearly_contains = [&](const CellIterator &candidate,
+                                                 Point<dim>         &y,
+                                                 Point<dim>         &eta) {
+                  const auto &vertices = grid.cell_vertices(candidate);
+                  if (!in_bounding_box<dim>(vertices, y, 0.05))
                     return false;
-                }
-              return true;
-            };
-            // The scale s of the domain about the point: 1 unless a corner
-            // left the patch (beyond the mesh or a wall, or past the
-            // neighbours). Then the whole domain is shrunk about the point,
-            // so that it stays centred on it: a point next to a wall moves
-            // with the wall's nodes, as with linear weights, instead of
-            // being pulled through it by its far corners. The scale is kept
-            // from step to step (the last slot) and tried to be doubled
-            // every 8th step, so a point resting against a wall pays for
-            // one try most steps, not a bisection.
-            double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
-            const double grown =
-              step % 8 == 0 ? std::min(1., 2 * scale) : scale;
-            if (locate_corners(grown))
-              scale = grown;
-            else if (!(scale < grown && locate_corners(scale)))
-              {
-                double inside = 0, outside = std::min(scale, grown);
-                for (unsigned int i = 0; i < 10; ++i)
+                  InverseMappingResult<dim> result;
+                  if constexpr (dim == 2)
+                    result = grid.bilinear_map(candidate).inverse(y);
+                  else
+                    result = inverse_map_newton<dim>(vertices, y);
+                  if (!result.success || !inside_unit_cell(result.xi, 0.02))
+                    return false;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    eta[d] = std::min(1., std::max(0., result.xi[d]));
+                  y                  = map_unit_to_real<dim>(vertices, eta);
+                  parallelepiped = false;
+                  return true;
+                };
+                // Whether every corner of the domain scaled by s about x_p
+                // lies in the patch (and where).
+                const auto locate_corners = [&](const double s) {
+                  parallelepiped = true;
+                  for (unsigned int c = 0; c < n_corners; ++c)
+                    {
+                      x[c] =
+                        x_p + s * D[c];
+                      bool found = false;
+                      for (unsigned int j = 0; j <= patch.size(); ++j)
+                        {
+                          // The previous point's cell of this corner first.
+                          const unsigned int i =
+                            j == 0 ? last_found[c] :
+                                     (j - 1 == last_found[c] ? 0 : j - 1);
+                          if (j > 0 && j - 1 == 0 && last_found[c] == 0)
+                            continue;
+                          if (cell_contains<dim>(*vertices_of[i],
+                                                 map_of[i],
+                                                 x[c],
+                                                 xi[c]))
+                            {
+                              corner_cell[c] = patch[i];
+                              last_found[c]  = i;
+                              found          = true;
+                              break;
+                            }
+                        }
+                      // Just outside every cell of the patch (a domain built
+                      // from the Jacobian at the point pokes out of a
+                      // distorted boundary cell by O(distortion * size^2)):
+                      // moved onto the nearest cell's boundary.
+                      for (unsigned int i = 0; !found && i < patch.size(); ++i)
+                        if (nearly_contains(patch[i], x[c], xi[c]))
+                          {
+                            corner_cell[c] = patch[i];
+                            found          = true;
+                          }
+                      if (!found)
+                        return false;
+                    }
+                  return true;
+                };
+                // The scale s of the domain about the point: 1 unless a corner
+                // left the patch (beyond the mesh or a wall, or past the
+                // neighbours). Then the whole domain is shrunk about the point,
+                // so that it stays centred on it: a point next to a wall moves
+                // with the wall's nodes, as with linear weights, instead of
+                // being pulled through it by its far corners. The scale is kept
+                // from step to step (the last slot) and tried to be doubled
+                // every 8th step, so a point resting against a wall pays for
+                // one try most steps, not a bisection.
+                double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
+                const double grown =
+                  step % 8 == 0 ? std::min(1., 2 * scale) : scale;
+                if (locate_corners(grown))
+                  scale = grown;
+                else if (!(scale < grown && locate_corners(scale)))
                   {
-                    const double s = 0.5 * (inside + outside);
-                    (locate_corners(s) ? inside : outside) = s;
-                  }
-                scale = inside;
-                if (inside == 0 || !locate_corners(inside))
-                  {
-                    // The point sits on the patch's edge: a domain a
-                    // millionth of its size in its own cell, its corners'
-                    // reference coordinates extrapolated if they are just
-                    // outside (the limit is the linear weights).
-                    scale          = 1e-6;
-                    parallelepiped = true;
-                    for (unsigned int c = 0; c < n_corners; ++c)
+                    double inside = 0, outside = std::min(scale, grown);
+                    for (unsigned int i = 0; i < 10; ++i)
                       {
-                        x[c] = x_p + scale * D[c];
-                        corner_cell[c] = cell;
-                        if constexpr (dim == 2)
-                          xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
-                        else
-                          xi[c] = inverse_map_newton<dim>(
-                                    grid.cell_vertices(cell), x[c])
-                                    .xi;
+                        const double s = 0.5 * (inside + outside);
+                        (locate_corners(s) ? inside : outside) = s;
+                      }
+                    scale = inside;
+                    if (inside == 0 || !locate_corners(inside))
+                      {
+                        // The point sits on the patch's edge: a domain a
+                        // millionth of its size in its own cell, its corners'
+                        // reference coordinates extrapolated if they are just
+                        // outside (the limit is the linear weights).
+                        scale          = 1e-6;
+                        parallelepiped = true;
+                        for (unsigned int c = 0; c < n_corners; ++c)
+                          {
+                            x[c] = x_p + scale * D[c];
+                            corner_cell[c] = cell;
+                            if constexpr (dim == 2)
+                              xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
+                            else
+                              xi[c] = inverse_map_newton<dim>(
+                                        grid.cell_vertices(cell), x[c])
+                                        .xi;
+                          }
                       }
                   }
+                std::array<double, n_corners>         alpha;
+                std::array<Tensor<1, dim>, n_corners> beta;
+                const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
+                if (parallelepiped && PointDomains<dim>::is_parallelepiped(D, R))
+                  PointDomains<dim>::parallelepiped_weights(scale * R,
+                                                            alpha,
+                                                            beta);
+                else if (!PointDomains<dim>::corner_weights(x, alpha, beta))
+                  {
+                    std::ostringstream s;
+                    s << "The CPDI domain of material point " << point->get_id()
+                      << " at (" << x_p << ") is inverted (domain vectors "
+                      << R << " as a parallelogram): the material it represents has turned inside "
+                      << "out; reduce the time step.";
+                    inverted[chunk] = s.str();
+                    break;
+                  }
+                // The affine centre (see corner_offset).
+                Tensor<1, dim> shift;
+                for (unsigned int c = 0; c < n_corners; ++c)
+                  shift += alpha[c] * (x[c] - x_p);
+                for (unsigned int c = 0; c < n_corners; ++c)
+                  corners[std::size_t(p) * n_corners + c] = {corner_cell[c],
+                                                             p,
+                                                             xi[c],
+                                                             alpha[c],
+                                                             beta[c],
+                                                             (x[c] - x_p) - shift};
               }
-            std::array<double, n_corners>         alpha;
-            std::array<Tensor<1, dim>, n_corners> beta;
-            const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
-            if (parallelepiped && PointDomains<dim>::is_parallelepiped(D, R))
-              PointDomains<dim>::parallelepiped_weights(scale * R,
-                                                        alpha,
-                                                        beta);
-            else if (!PointDomains<dim>::corner_weights(x, alpha, beta))
-              {
-                std::ostringstream s;
-                s << "The CPDI domain of material point " << point->get_id()
-                  << " at (" << x_p << ") is inverted (domain vectors "
-                  << R << " as a parallelogram): the material it represents has turned inside "
-                  << "out; reduce the time step.";
-                inverted[chunk] = s.str();
-                break;
-              }
-            // The affine centre (see corner_offset).
-            Tensor<1, dim> shift;
-            for (unsigned int c = 0; c < n_corners; ++c)
-              shift += alpha[c] * (x[c] - x_p);
-            for (unsigned int c = 0; c < n_corners; ++c)
-              corners[std::size_t(p) * n_corners + c] = {corner_cell[c],
-                                                         p,
-                                                         xi[c],
-                                                         alpha[c],
-                                                         beta[c],
-                                                         (x[c] - x_p) - shift};
           }
-      }
-    });
+      });
     for (const std::string &message : inverted)
       if (!message.empty())
         throw std::runtime_error(message);

@@ -109,13 +109,6 @@ namespace MPM
     shortest_edge = std::min(shortest_edge, active.size);
     if constexpr (dim == 2)
       active.map = &grid.bilinear_map(cell);
-    for (const auto &vertex_dofs : active.dofs)
-      for (const unsigned int local : vertex_dofs)
-        if (!dof_is_touched[local])
-          {
-            dof_is_touched[local] = 1;
-            touched_dofs.push_back(local);
-          }
     active_cells.push_back(active);
   }
 
@@ -124,34 +117,45 @@ namespace MPM
   double
   ParticleGridWeights<dim>::finish_active_cells()
   {
-    for (const unsigned int i : touched_dofs)
-      dof_is_touched[i] = 0;
-
     const unsigned int n_cells = active_cells.size();
     cell_chunk_size            = chunk_size_for(n_cells);
-    // The vertices that cells of two chunks share (by the first
-    // component's entry: a vertex's components are touched by the same
-    // cells).
-    const unsigned int unseen = shared_by_chunks - 1;
-    for (const unsigned int i : touched_dofs)
-      chunk_of_dof[i] = unseen;
+    // The nodal entries of the cells, in the order they are first touched,
+    // and (by the first component's entry: a vertex's components are
+    // touched by the same cells) the chunk of the cells that touch each,
+    // or shared_by_chunks.
     for (unsigned int c = 0; c < n_cells; ++c)
-      for (const auto &vertex_dofs : active_cells[c].dofs)
-        {
-          unsigned int &chunk = chunk_of_dof[vertex_dofs[0]];
-          const unsigned int this_chunk = c / cell_chunk_size;
-          if (chunk == unseen)
-            chunk = this_chunk;
-          else if (chunk != this_chunk)
-            chunk = shared_by_chunks;
-        }
-    for (auto &cell : active_cells)
       {
-        cell.vertices_shared_with_other_chunks = 0;
-        for (unsigned int i = 0; i < n_vertices; ++i)
-          if (chunk_of_dof[cell.dofs[i][0]] == shared_by_chunks)
-            cell.vertices_shared_with_other_chunks |= (1u << i);
+        const unsigned int this_chunk = c / cell_chunk_size;
+        for (const auto &vertex_dofs : active_cells[c].dofs)
+          {
+            if (!dof_is_touched[vertex_dofs[0]])
+              {
+                for (const unsigned int local : vertex_dofs)
+                  {
+                    dof_is_touched[local] = 1;
+                    touched_dofs.push_back(local);
+                  }
+                chunk_of_dof[vertex_dofs[0]] = this_chunk;
+              }
+            else if (chunk_of_dof[vertex_dofs[0]] != this_chunk)
+              chunk_of_dof[vertex_dofs[0]] = shared_by_chunks;
+          }
       }
+    for (const unsigned int i : touched_dofs)
+      dof_is_touched[i] = 0;
+    // The cells with vertices that cells of other chunks share (none with
+    // one chunk).
+    cells_on_chunk_borders.clear();
+    if (n_cells > cell_chunk_size)
+      for (unsigned int c = 0; c < n_cells; ++c)
+        {
+          ActiveCell &cell = active_cells[c];
+          for (unsigned int i = 0; i < n_vertices; ++i)
+            if (chunk_of_dof[cell.dofs[i][0]] == shared_by_chunks)
+              cell.vertices_shared_with_other_chunks |= (1u << i);
+          if (cell.vertices_shared_with_other_chunks != 0)
+            cells_on_chunk_borders.push_back(c);
+        }
     return shortest_edge;
   }
 

@@ -252,6 +252,12 @@ namespace MPM
     void
     update_nodal_kinematics();
 
+    /// Call @p body(i) for each nodal entry i the step's points touch,
+    /// on the available threads (for_each_chunk()).
+    template <typename Body>
+    void
+    for_each_active_dof(const Body &body) const;
+
     /// The largest point speed on all ranks from this rank's @p v_max2;
     /// stops the run if a point became non-finite. Collective.
     void

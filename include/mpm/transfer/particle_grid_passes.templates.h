@@ -57,7 +57,7 @@ namespace MPM
                 }
           }
       });
-    for (unsigned int c = 0; c < n_cells; ++c)
+    for (const unsigned int c : this->cells_on_chunk_borders)
       if (const unsigned char shared =
             this->active_cells[c].vertices_shared_with_other_chunks)
         for (unsigned int f = 0; f < n_targets; ++f)

@@ -302,6 +302,9 @@ namespace MPM
      */
     unsigned int cell_chunk_size = 1;
 
+    /// The active cells with vertices_shared_with_other_chunks, in order.
+    std::vector<unsigned int> cells_on_chunk_borders;
+
     /// The values of @p v at the vertices of @p cell.
     static VertexValues
     read_nodes(const ActiveCell &cell, const NodalVector &v)
