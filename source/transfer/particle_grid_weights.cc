@@ -53,10 +53,9 @@ namespace MPM
   ParticleGridWeights<dim>::setup_partition()
   {
     const NodalVector &v = context.nodal.mass;
-    dof_is_touched.assign(v.locally_owned_size() +
-                            v.get_partitioner()->n_ghost_indices(),
-                          0);
-    chunk_of_dof.assign(dof_is_touched.size(), shared_by_chunks);
+    chunk_of_dof.assign(v.locally_owned_size() +
+                          v.get_partitioner()->n_ghost_indices(),
+                        untouched);
     touched_dofs.clear();
   }
 
@@ -128,21 +127,16 @@ namespace MPM
         const unsigned int this_chunk = c / cell_chunk_size;
         for (const auto &vertex_dofs : active_cells[c].dofs)
           {
-            if (!dof_is_touched[vertex_dofs[0]])
+            if (chunk_of_dof[vertex_dofs[0]] == untouched)
               {
                 for (const unsigned int local : vertex_dofs)
-                  {
-                    dof_is_touched[local] = 1;
-                    touched_dofs.push_back(local);
-                  }
+                  touched_dofs.push_back(local);
                 chunk_of_dof[vertex_dofs[0]] = this_chunk;
               }
             else if (chunk_of_dof[vertex_dofs[0]] != this_chunk)
               chunk_of_dof[vertex_dofs[0]] = shared_by_chunks;
           }
       }
-    for (const unsigned int i : touched_dofs)
-      dof_is_touched[i] = 0;
     // The cells with vertices that cells of other chunks share (none with
     // one chunk).
     cells_on_chunk_borders.clear();
@@ -154,8 +148,13 @@ namespace MPM
             if (chunk_of_dof[cell.dofs[i][0]] == shared_by_chunks)
               cell.vertices_shared_with_other_chunks |= (1u << i);
           if (cell.vertices_shared_with_other_chunks != 0)
-            cells_on_chunk_borders.push_back(c);
+            {
+              cell.border_index = cells_on_chunk_borders.size();
+              cells_on_chunk_borders.push_back(c);
+            }
         }
+    for (const unsigned int i : touched_dofs)
+      chunk_of_dof[i] = untouched;
     return shortest_edge;
   }
 

@@ -125,8 +125,8 @@ namespace MPM
     for_active_cells(const std::array<NodalVector *, n_targets> &targets,
                      const Body                                 &body);
 
-    /// for_active_cells()'s sums of the cells with vertices shared with
-    /// other chunks.
+    /// for_active_cells()'s sums of the cells on chunk borders (by
+    /// border_index).
     std::vector<VertexValues> cell_sums;
     /// What the point updates of each chunk of cells found.
     std::vector<typename PointUpdate<dim>::Findings> chunk_findings;

@@ -26,8 +26,10 @@ namespace MPM
     const unsigned int chunk_size = this->cell_chunk_size;
     // Grown only: value-initialising it again at every size change (the
     // passes have 1 to 3 targets) would cost a write of the whole array.
-    if (cell_sums.size() < std::size_t(n_cells) * n_targets)
-      cell_sums.resize(std::size_t(n_cells) * n_targets);
+    const std::size_t n_sums =
+      this->cells_on_chunk_borders.size() * n_targets;
+    if (cell_sums.size() < n_sums)
+      cell_sums.resize(n_sums);
     for_each_chunk(
       n_cells,
       chunk_size,
@@ -52,25 +54,24 @@ namespace MPM
                           for (unsigned int d = 0; d < dim; ++d)
                             targets[f]->local_element(cell.dofs[i][d]) +=
                               sums[f][i][d];
-                      cell_sums[std::size_t(c) * n_targets + f] = sums[f];
+                      cell_sums[std::size_t(cell.border_index) * n_targets +
+                                f] = sums[f];
                     }
                 }
           }
       });
-    for (const unsigned int c : this->cells_on_chunk_borders)
-      if (const unsigned char shared =
-            this->active_cells[c].vertices_shared_with_other_chunks)
+    for (std::size_t b = 0; b < this->cells_on_chunk_borders.size(); ++b)
+      {
+        const ActiveCell &cell =
+          this->active_cells[this->cells_on_chunk_borders[b]];
         for (unsigned int f = 0; f < n_targets; ++f)
           if (targets[f] != nullptr)
-            {
-              const VertexValues &sums =
-                cell_sums[std::size_t(c) * n_targets + f];
-              for (unsigned int i = 0; i < n_vertices; ++i)
-                if ((shared & (1u << i)) != 0)
-                  for (unsigned int d = 0; d < dim; ++d)
-                    targets[f]->local_element(
-                      this->active_cells[c].dofs[i][d]) += sums[i][d];
-            }
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              if ((cell.vertices_shared_with_other_chunks & (1u << i)) != 0)
+                for (unsigned int d = 0; d < dim; ++d)
+                  targets[f]->local_element(cell.dofs[i][d]) +=
+                    cell_sums[b * n_targets + f][i][d];
+      }
   }
 
 

@@ -271,6 +271,8 @@ namespace MPM
        * of the cells.
        */
       unsigned char vertices_shared_with_other_chunks = 0;
+      /// If it has such vertices: its index in cells_on_chunk_borders.
+      unsigned int border_index = 0;
     };
 
     /// Start collecting this step's active cells and nodal entries.
@@ -411,12 +413,15 @@ namespace MPM
   private:
     double                     shortest_edge = 0;
     std::vector<unsigned int>  touched_dofs;
-    std::vector<unsigned char> dof_is_touched;
-    /// Per local nodal entry touched this step: the chunk of the cells
-    /// that touch it, or shared_by_chunks (finish_active_cells()).
-    std::vector<unsigned int>  chunk_of_dof;
+    /**
+     * Per local nodal entry (by a vertex's first component): untouched
+     * outside finish_active_cells(); there, the chunk of the cells that
+     * touch it, or shared_by_chunks.
+     */
+    std::vector<unsigned int>     chunk_of_dof;
     static constexpr unsigned int shared_by_chunks =
       numbers::invalid_unsigned_int;
+    static constexpr unsigned int untouched = shared_by_chunks - 1;
   };
 
   /**
