@@ -1,7 +1,7 @@
 // CPDI weights (CpdiWeights, PointDomains): each point's domain corners
-// located in the patch of its cell and weighed (prepare()), and what the
-// corners contribute to the forces and the velocity gradient; the passes
-// are ParticleGridPasses'.
+// located in the patch of its cell, weighed, and summed into the point's
+// weights on each cell they lie in (prepare()); the passes are
+// ParticleGridPasses'.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/tensor.h>
@@ -93,36 +93,6 @@ namespace MPM
           return true;
         }
     }
-
-
-    /// The dim x dim part of a point's stress.
-    template <int dim>
-    Tensor<2, dim>
-    in_plane_stress(const double *props)
-    {
-      const SymmetricTensor<2, 3> stress =
-        read_symmetric_tensor(&props[PropertyLayout<dim>::stress]);
-      Tensor<2, dim> sigma;
-      for (unsigned int a = 0; a < dim; ++a)
-        for (unsigned int b = 0; b < dim; ++b)
-          sigma[a][b] = stress[a][b];
-      return sigma;
-    }
-
-
-    /// A corner's force before its shape function values: -V sigma beta_c
-    /// + alpha_c m g (f_i = N_i(x_c) times this).
-    template <int dim>
-    Tensor<1, dim>
-    corner_force(const double         *props,
-                 const double          alpha,
-                 const Tensor<1, dim> &beta,
-                 const Tensor<1, dim> &g)
-    {
-      using Layout = PropertyLayout<dim>;
-      return -props[Layout::volume] * (in_plane_stress<dim>(props) * beta) +
-             (alpha * props[Layout::mass]) * g;
-    }
   } // namespace
 
 
@@ -185,6 +155,9 @@ namespace MPM
     // (reused storage).
     auto &corners = located_corners;
     corners.resize(std::size_t(n_points) * n_corners);
+    const bool affine = this->affine();
+    if (affine)
+      point_centre.resize(n_points);
 
     // The cells holding points, with their first points.
     this->point_cell_begin.clear();
@@ -393,17 +366,22 @@ namespace MPM
                     inverted[chunk] = s.str();
                     break;
                   }
-                // The affine centre (see corner_offset).
-                Tensor<1, dim> shift;
+                // The affine centre (see entry_centre).
+                if (affine)
+                  {
+                    Tensor<1, dim> shift;
+                    for (unsigned int c = 0; c < n_corners; ++c)
+                      shift += alpha[c] * (x[c] - x_p);
+                    point_centre[p] = x_p + shift;
+                  }
                 for (unsigned int c = 0; c < n_corners; ++c)
-                  shift += alpha[c] * (x[c] - x_p);
-                for (unsigned int c = 0; c < n_corners; ++c)
-                  corners[std::size_t(p) * n_corners + c] = {corner_cell[c],
-                                                             p,
-                                                             xi[c],
-                                                             alpha[c],
-                                                             beta[c],
-                                                             (x[c] - x_p) - shift};
+                  {
+                    unsigned char first = 0;
+                    while (corner_cell[first] != corner_cell[c])
+                      ++first;
+                    corners[std::size_t(p) * n_corners + c] = {
+                      corner_cell[c], xi[c], alpha[c], beta[c], first};
+                  }
               }
           }
       });
@@ -411,64 +389,77 @@ namespace MPM
       if (!message.empty())
         throw std::runtime_error(message);
 
-    // Group the corners by cell (a counting sort in the order in which the
-    // cells were first touched), so that each pass adds to a cell's nodes
-    // once for all corners in it.
+    // The entries (a point's corners in one cell) grouped by cell: a
+    // counting sort in the order in which the cells were first touched, so
+    // that each pass adds to a cell's nodes once for all entries in it.
     // slot_of_cell (as long as the mesh, set up with the nodal fields) is
     // reset below for the touched cells only: no per-step cost in the size
     // of the mesh.
     auto &slot_of_cell = corner_slot_of_cell;
     std::vector<CellIterator> touched;
     std::vector<unsigned int> count;
-    for (const auto &corner : corners)
-      {
-        unsigned int &slot = slot_of_cell[corner.cell->active_cell_index()];
-        if (slot == numbers::invalid_unsigned_int)
-          {
-            slot = touched.size();
-            touched.push_back(corner.cell);
-            count.push_back(0);
-          }
-        ++count[slot];
-      }
+    for (std::size_t j = 0; j < corners.size(); ++j)
+      if (corners[j].first_in_cell == j % n_corners)
+        {
+          unsigned int &slot =
+            slot_of_cell[corners[j].cell->active_cell_index()];
+          if (slot == numbers::invalid_unsigned_int)
+            {
+              slot = touched.size();
+              touched.push_back(corners[j].cell);
+              count.push_back(0);
+            }
+          ++count[slot];
+        }
     std::vector<unsigned int> next(touched.size() + 1, 0);
     for (unsigned int s = 0; s < touched.size(); ++s)
       next[s + 1] = next[s] + count[s];
-    shape_functions.resize(corners.size());
-    corner_point.resize(corners.size());
-    corner_alpha.resize(corners.size());
-    corner_beta.resize(corners.size());
-    const bool affine = this->affine();
+    const unsigned int n_entries = next.back();
+    shape_functions.resize(n_entries);
+    entry_point.resize(n_entries);
     if (affine)
-      corner_offset.resize(corners.size());
-    // Each corner's place among its cell's, then (on the available
-    // threads) its shape functions there.
+      entry_centre.resize(n_entries);
+    // Each corner's entry (a corner after the first in its cell joins the
+    // first's), then (on the available threads, point by point) the
+    // entries' weights, summed over their corners in the corners' order.
     entry_of_corner.resize(corners.size());
     for (std::size_t j = 0; j < corners.size(); ++j)
-      entry_of_corner[j] =
-        next[slot_of_cell[corners[j].cell->active_cell_index()]]++;
-    for_each_chunk(corners.size(),
-                   chunk_size_for(corners.size()),
-                   [&](const unsigned int,
-                       const unsigned int first,
-                       const unsigned int last) {
-                     for (unsigned int j = first; j < last; ++j)
-                       {
-                         const LocatedCorner &corner = corners[j];
-                         const unsigned int   k      = entry_of_corner[j];
-                         if constexpr (dim == 2)
-                           this->shape_functions[k].reinit(
-                             grid.bilinear_map(corner.cell), corner.xi);
-                         else
-                           this->shape_functions[k].reinit(
-                             grid.cell_vertices(corner.cell), corner.xi);
-                         corner_point[k] = corner.point;
-                         corner_alpha[k] = corner.alpha;
-                         corner_beta[k]  = corner.beta;
-                         if (affine)
-                           corner_offset[k] = corner.offset;
-                       }
-                   });
+      {
+        const std::size_t first =
+          j - j % n_corners + corners[j].first_in_cell;
+        entry_of_corner[j] =
+          first == j ?
+            next[slot_of_cell[corners[j].cell->active_cell_index()]]++ :
+            entry_of_corner[first];
+      }
+    for_each_chunk(
+      n_points,
+      chunk_size_for(n_points),
+      [&](const unsigned int, const unsigned int first, const unsigned int last) {
+        for (unsigned int p = first; p < last; ++p)
+          for (unsigned int c = 0; c < n_corners; ++c)
+            {
+              const std::size_t    j      = std::size_t(p) * n_corners + c;
+              const LocatedCorner &corner = corners[j];
+              const unsigned int   k      = entry_of_corner[j];
+              auto                &w      = shape_functions[k];
+              if (corner.first_in_cell == c)
+                {
+                  w.value.fill(0.);
+                  w.gradient.fill(Tensor<1, dim>());
+                  entry_point[k] = p;
+                  if (affine)
+                    entry_centre[k] =
+                      point_centre[p] - grid.cell_vertices(corner.cell)[0];
+                }
+              const auto N = Q1ShapeFunctions<dim>::values_at(corner.xi);
+              for (unsigned int i = 0; i < n_vertices; ++i)
+                {
+                  w.value[i] += corner.alpha * N[i];
+                  w.gradient[i] += N[i] * corner.beta;
+                }
+            }
+      });
     for (const CellIterator &cell : touched)
       slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
 
@@ -476,22 +467,6 @@ namespace MPM
     for (unsigned int s = 0; s < touched.size(); ++s)
       this->add_active_cell(touched[s], count[s]);
     return this->finish_active_cells();
-  }
-
-
-  template <int dim>
-  void
-  CpdiWeights<dim>::add_entry_forces(const unsigned int    k,
-                                     const double         *props,
-                                     const Tensor<1, dim> &g,
-                                     VertexValues         &forces) const
-  {
-    // f_i = -V sigma grad w_i + w_i m g, corner by corner.
-    const Tensor<1, dim> f =
-      corner_force<dim>(props, corner_alpha[k], corner_beta[k], g);
-    const auto &N = this->shape_functions[k].value;
-    for (unsigned int i = 0; i < n_vertices; ++i)
-      forces[i] += N[i] * f;
   }
 
 
@@ -505,19 +480,6 @@ namespace MPM
     PointDomains<dim>::write(
       point_domains.deformed_domain(D, this->context.time_step * grad_v),
       props + this->own_slot);
-  }
-
-
-  template <int dim>
-  typename CpdiWeights<dim>::VertexValues
-  CpdiWeights<dim>::node_offsets(const ActiveCell  &cell,
-                                const unsigned int k) const
-  {
-    // x_i - xbar_p = (x_i - x_c) + (x_c - xbar_p).
-    auto dx = this->vertex_offsets(cell, this->shape_functions[k]);
-    for (auto &d : dx)
-      d += corner_offset[k];
-    return dx;
   }
 
 

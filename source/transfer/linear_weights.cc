@@ -1,10 +1,8 @@
-// The mesh's own linear weights: the points located in their cells and
-// their shape functions (prepare()), and the forces a point exerts through
-// them; the passes are ParticleGridPasses'.
+// The mesh's own linear weights: the points grouped by their cells and
+// their shape functions (prepare()); the passes are ParticleGridPasses'.
 
 #include <deal.II/base/tensor.h>
 
-#include <mpm/material_points/property_layout.h>
 #include <mpm/parallel/thread_chunks.h>
 #include <mpm/transfer/linear_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
@@ -66,30 +64,6 @@ namespace MPM
           }
       });
     return shortest_edge;
-  }
-
-
-  template <int dim>
-  void
-  LinearWeights<dim>::add_entry_forces(const unsigned int    k,
-                                       const double         *props,
-                                       const Tensor<1, dim> &g,
-                                       VertexValues         &forces) const
-  {
-    using Layout   = PropertyLayout<dim>;
-    const auto  &sf = this->shape_functions[k];
-    const double m = props[Layout::mass];
-    const double V = props[Layout::volume];
-    // The dim x dim part of the stress: the only part that exerts in-plane
-    // forces.
-    const SymmetricTensor<2, 3> stress =
-      read_symmetric_tensor(&props[Layout::stress]);
-    Tensor<2, dim> sigma;
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = 0; b < dim; ++b)
-        sigma[a][b] = stress[a][b];
-    for (unsigned int i = 0; i < n_vertices; ++i)
-      forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
   }
 
 

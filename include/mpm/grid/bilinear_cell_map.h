@@ -133,6 +133,14 @@ namespace MPM
       return result.success && inside_unit_cell(xi);
     }
 
+    /// Whether the cell is a parallelogram (its map affine, its inverse
+    /// Cramer's rule).
+    bool
+    is_parallelogram() const
+    {
+      return affine;
+    }
+
     /**
      * The Jacobian dx/dxi of the map at @p xi, as
      * {{dx/dxi, dx/deta}, {dy/dxi, dy/deta}}.

@@ -71,6 +71,32 @@ namespace MPM
 
   public:
     /**
+     * The values alone at reference point @p xi (where the gradients of
+     * the mesh functions are not needed: CPDI's domain corners), the same
+     * numbers as reinit()'s.
+     */
+    static std::array<double, n_vertices>
+    values_at(const Point<dim> &xi)
+    {
+      std::array<double, n_vertices> N;
+      if constexpr (dim == 2)
+        {
+          const double x = xi[0], y = xi[1];
+          const double ox = 1. - x, oy = 1. - y;
+          N = {{ox * oy, x * oy, ox * y, x * y}};
+        }
+      else
+        for (unsigned int i = 0; i < n_vertices; ++i)
+          {
+            double v = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              v *= ((i >> d) & 1) ? xi[d] : 1. - xi[d];
+            N[i] = v;
+          }
+      return N;
+    }
+
+    /**
      * Evaluate at reference point @p xi of the quadrilateral whose map
      * is @p map (2D). The Jacobian comes from the map's edge vectors,
      * [b + d eta, c + d xi]: four products instead of sixteen, and

@@ -11,11 +11,12 @@ namespace MPM
   /**
    * 'Particle-grid weights = cpdi': each point acts on the nodes through
    * the 2^dim corners of its domain (PointDomains has the domain and the
-   * arithmetic of its weights). The entries of the passes
-   * (ParticleGridPasses) are the corners, grouped by the cell they lie in,
-   * with corner_point, corner_alpha and corner_beta saying whose corner
-   * each is and how it weighs; a pass sums over the corners cell by cell
-   * and then visits the points.
+   * arithmetic of its weights), w_i = sum_c alpha_c N_i(x_c) and grad w_i =
+   * sum_c N_i(x_c) beta_c. The corners that lie in the same cell make one
+   * entry of the passes (ParticleGridPasses): the point's weights on that
+   * cell's vertices, summed over those corners. A domain within one cell
+   * is one entry, as a point with linear weights is; one across a cell
+   * edge is two.
    */
   template <int dim>
   class CpdiWeights : public ParticleGridPasses<dim, CpdiWeights<dim>>
@@ -54,7 +55,8 @@ namespace MPM
     /**
      * Locates each point's corners in its cell's patch (shrinking the
      * domain where a corner left it: PointDomains), computes the corners'
-     * alpha_c and beta_c, and groups the corners by cell.
+     * alpha_c and beta_c, and makes the entries: the corners of a point
+     * that lie in one cell, their weights summed, grouped by cell.
      */
     double
     prepare() override;
@@ -64,43 +66,27 @@ namespace MPM
     using typename ParticleGridWeights<dim>::ActiveCell;
     using CellIterator = typename Triangulation<dim>::active_cell_iterator;
 
-    /// @name The hooks of ParticleGridPasses: the entries are the corners
-    /// of the points' domains, grouped by the cell they lie in.
+    /// @name The hooks of ParticleGridPasses: an entry is a point's
+    /// corners in one cell, the entries grouped by cell.
     /// @{
     static constexpr bool entries_are_points = false;
 
     unsigned int
     point_of_entry(const unsigned int k) const
     {
-      return corner_point[k];
-    }
-
-    /// alpha_c: the corner's share of the domain.
-    double
-    share_of_entry(const unsigned int k) const
-    {
-      return corner_alpha[k];
+      return entry_point[k];
     }
 
     /// The offsets x_i - xbar_p of the nodes of @p cell from the affine
-    /// centre of the point of corner @p k (APIC).
+    /// centre of the point of entry @p k (APIC).
     VertexValues
-    node_offsets(const ActiveCell &cell, const unsigned int k) const;
-
-    /// N_i(x_c) (-V sigma beta_c + alpha_c m g).
-    void
-    add_entry_forces(const unsigned int    k,
-                     const double         *props,
-                     const Tensor<1, dim> &gravity,
-                     VertexValues         &forces) const;
-
-    /// grad v_p = sum_i v_i (x) grad w_i = sum_c v(x_c) (x) beta_c.
-    Tensor<2, dim>
-    entry_velocity_gradient(const unsigned int k,
-                            const VertexValues &,
-                            const Tensor<1, dim> &v) const
+    node_offsets(const ActiveCell &cell, const unsigned int k) const
     {
-      return outer_product(v, corner_beta[k]);
+      VertexValues dx;
+      const auto  &x = *cell.vertices;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        dx[i] = (x[i] - x[0]) - entry_centre[k];
+      return dx;
     }
 
     /// The domain deforms with the point: D_c <- (I + dt grad v) D_c.
@@ -116,33 +102,34 @@ namespace MPM
 
     PointDomains<dim> point_domains;
 
-    /// Each corner's point (index into points), alpha_c and beta_c
-    /// (PointDomains), in the order of shape_functions.
-    std::vector<unsigned int>   corner_point;
-    std::vector<double>         corner_alpha;
-    std::vector<Tensor<1, dim>> corner_beta;
+    /// Each entry's point (index into points), in the order of
+    /// shape_functions.
+    std::vector<unsigned int> entry_point;
     /**
-     * APIC: each corner's offset x_c - xbar_p from its point's affine
-     * centre xbar_p = x_p + sum_c alpha_c (x_c - x_p), the mean of the
-     * weights' centres, about which sum_i w_ip (x_i - xbar_p) = 0 (so the
-     * affine part adds no momentum); xbar_p = x_p unless a corner was
-     * moved onto a cell.
+     * APIC: each entry's xbar_p - x_0, its point's affine centre xbar_p =
+     * x_p + sum_c alpha_c (x_c - x_p) (the mean of the weights' centres,
+     * about which sum_i w_ip (x_i - xbar_p) = 0, so the affine part adds no
+     * momentum; xbar_p = x_p unless a corner was moved onto a cell)
+     * relative to the first vertex x_0 of the entry's cell.
      */
-    std::vector<Tensor<1, dim>> corner_offset;
-    /// A corner located by prepare(), before the corners are grouped by
-    /// cell.
+    std::vector<Tensor<1, dim>> entry_centre;
+    /// A corner located by prepare(), before the corners are grouped into
+    /// entries.
     struct LocatedCorner
     {
       CellIterator   cell;
-      unsigned int   point;
       Point<dim>     xi;
       double         alpha;
       Tensor<1, dim> beta;
-      /// x_c - x_p minus the point's mean corner offset (APIC).
-      Tensor<1, dim> offset;
+      /// The point's first corner in the same cell (this corner's, if it
+      /// is the first): the corners of one entry.
+      unsigned char first_in_cell;
     };
+    /// n_corners per point, in the order of the points.
     std::vector<LocatedCorner> located_corners;
-    /// Where each of located_corners goes among the entries.
+    /// Each point's affine centre xbar_p (APIC).
+    std::vector<Point<dim>> point_centre;
+    /// The entry each of located_corners adds to.
     std::vector<unsigned int> entry_of_corner;
     /// The cells holding points this step, and each one's first point.
     std::vector<typename Triangulation<dim>::active_cell_iterator>

@@ -46,37 +46,10 @@ namespace MPM
       return k;
     }
 
-    static double
-    share_of_entry(const unsigned int)
-    {
-      return 1.;
-    }
-
     VertexValues
     node_offsets(const ActiveCell &cell, const unsigned int k) const
     {
       return this->vertex_offsets(cell, this->shape_functions[k]);
-    }
-
-    /// Gravity and the divergence of the point's stress: -V sigma grad N_i
-    /// + N_i m g.
-    void
-    add_entry_forces(const unsigned int    k,
-                     const double         *props,
-                     const Tensor<1, dim> &gravity,
-                     VertexValues         &forces) const;
-
-    /// sum_i v_i (x) grad N_i.
-    Tensor<2, dim>
-    entry_velocity_gradient(const unsigned int k,
-                            const VertexValues &v_node,
-                            const Tensor<1, dim> &) const
-    {
-      const auto    &sf = this->shape_functions[k];
-      Tensor<2, dim> grad_v;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        grad_v += outer_product(v_node[i], sf.gradient[i]);
-      return grad_v;
     }
 
     static void

@@ -15,11 +15,17 @@ namespace MPM
    *
    * A weight function (the template argument @p Weights, derived from this
    * class: LinearWeights, CpdiWeights) provides only what is its own: in
-   * prepare(), the step's *entries*, each a place where a point samples the
-   * mesh functions (the point itself, or one corner of its domain), grouped
-   * by the active cell they lie in, with their shape functions; and, entry
-   * by entry, these inline hooks (not virtual: each weight's passes are
-   * compiled with its own arithmetic):
+   * prepare(), the step's *entries*, grouped by the active cell they lie
+   * in. An entry is one point's weights on one cell's vertices: the values
+   * w_i and gradients grad w_i in shape_functions (for linear weights the
+   * mesh functions at the point, for CPDI their averages over the part of
+   * the point's domain whose corners lie in that cell), so that a point's
+   * weights, summed over its entries, are a partition of unity. The
+   * passes do the rest with the same arithmetic for every weight function
+   * (mass w_i m_p, force -V_p sigma_p grad w_i + w_i m_p g, velocity
+   * gradient sum_i v_i (x) grad w_i), and ask, entry by entry, these
+   * inline hooks (not virtual: each weight's passes are compiled with its
+   * own):
    *
    * - `static constexpr bool entries_are_points`: whether entry k is point
    *   k (one entry per point, in the order of the points). The passes then
@@ -27,16 +33,8 @@ namespace MPM
    *   entries first.
    * - `unsigned int point_of_entry(k)`: whose entry k is (index into
    *   point_properties()).
-   * - `double share_of_entry(k)`: the share alpha_k of its point's mass
-   *   (the weights of a point sum to one over its entries).
    * - `VertexValues node_offsets(cell, k)`: x_i - xbar_p for the vertices of
    *   entry k's cell, about the point's affine centre (APIC).
-   * - `void add_entry_forces(k, props, gravity, forces)`: entry k's share of
-   *   its point's forces -V sigma grad w_i + w_i m g on the cell's vertices.
-   * - `Tensor<2, dim> entry_velocity_gradient(k, v_node, v)`: entry k's
-   *   share of its point's velocity gradient sum_i v_i (x) grad w_i, from
-   *   the nodal values @p v_node of its cell and the value @p v
-   *   interpolated at it.
    * - `void deform_with_point(props, grad_v)`: whatever the weights keep on
    *   a point that deforms with it (CPDI's domain), after its stress update.
    * - `const BilinearCellMap *cell_map_of_point(p)` (only if the entries are
@@ -161,15 +159,36 @@ namespace MPM
     };
 
     /**
-     * Add entry @p k (in @p cell, with the nodal velocities @p v_node and
-     * the velocity @p v interpolated at it) to its point's @p sums.
+     * Add entry @p k (in @p cell, with the nodal velocities @p v_node) to
+     * its point's @p sums.
      */
     void
     add_to_affine_fit(const ActiveCell   &cell,
                       const unsigned int  k,
                       const VertexValues &v_node,
-                      const Tensor<1, dim> &v,
                       AffineFitSums      &sums) const;
+
+    /// Entry @p k's share of its point's forces, -V sigma grad w_i + w_i m
+    /// g, added to @p forces at its cell's vertices (@p props: the point's
+    /// properties).
+    void
+    add_entry_forces(const unsigned int    k,
+                     const double         *props,
+                     const Tensor<1, dim> &gravity,
+                     VertexValues         &forces) const;
+
+    /// Entry @p k's share of its point's velocity gradient, sum_i v_i (x)
+    /// grad w_i, from its cell's nodal velocities @p v_node.
+    Tensor<2, dim>
+    entry_velocity_gradient(const unsigned int  k,
+                            const VertexValues &v_node) const
+    {
+      const auto    &sf = this->shape_functions[k];
+      Tensor<2, dim> grad_v;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        grad_v += outer_product(v_node[i], sf.gradient[i]);
+      return grad_v;
+    }
 
     /// Each point's velocity gradient summed over its entries (stress
     /// update, weights whose entries are not the points).

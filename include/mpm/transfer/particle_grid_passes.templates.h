@@ -126,7 +126,7 @@ namespace MPM
           {
             const unsigned int p     = weights().point_of_entry(k);
             const double      *props = this->points[p];
-            const double m = weights().share_of_entry(k) * props[Layout::mass];
+            const double m = props[Layout::mass];
             const auto   v = read_vector<dim>(&props[Layout::velocity]);
             const auto  &sf = this->shape_functions[k];
             if (apic != nullptr)
@@ -146,7 +146,7 @@ namespace MPM
               this->add_mass_and_momentum(
                 sf.value, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
-              weights().add_entry_forces(k, props, g, forces);
+              add_entry_forces(k, props, g, forces);
           }
       });
     this->add_contributions_of_all_ranks(nodal.mass);
@@ -170,7 +170,7 @@ namespace MPM
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
         for (unsigned int k = cell.first_entry; k < end; ++k)
-          weights().add_entry_forces(
+          add_entry_forces(
             k, this->points[weights().point_of_entry(k)], g, forces[0]);
       });
     this->add_contributions_of_all_ranks(this->context.nodal.force);
@@ -179,24 +179,47 @@ namespace MPM
 
   template <int dim, class Weights>
   void
-  ParticleGridPasses<dim, Weights>::add_to_affine_fit(
-    const ActiveCell     &cell,
+  ParticleGridPasses<dim, Weights>::add_entry_forces(
     const unsigned int    k,
-    const VertexValues   &v_node,
-    const Tensor<1, dim> &v,
-    AffineFitSums        &sums) const
+    const double         *props,
+    const Tensor<1, dim> &g,
+    VertexValues         &forces) const
   {
-    const auto        &N     = this->shape_functions[k].value;
-    const VertexValues dx    = weights().node_offsets(cell, k);
-    const double       alpha = weights().share_of_entry(k);
+    using Layout   = PropertyLayout<dim>;
+    const auto  &sf = this->shape_functions[k];
+    const double m  = props[Layout::mass];
+    const double V  = props[Layout::volume];
+    // The dim x dim part of the stress: the only part that exerts in-plane
+    // forces.
+    const SymmetricTensor<2, 3> stress =
+      read_symmetric_tensor(&props[Layout::stress]);
+    Tensor<2, dim> sigma;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        sigma[a][b] = stress[a][b];
+    for (unsigned int i = 0; i < n_vertices; ++i)
+      forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::add_to_affine_fit(
+    const ActiveCell   &cell,
+    const unsigned int  k,
+    const VertexValues &v_node,
+    AffineFitSums      &sums) const
+  {
+    const auto        &N  = this->shape_functions[k].value;
+    const VertexValues dx = weights().node_offsets(cell, k);
     for (unsigned int i = 0; i < n_vertices; ++i)
       {
-        const Tensor<1, dim> w_dx = (alpha * N[i]) * dx[i];
+        const Tensor<1, dim> w_dx = N[i] * dx[i];
         sums.B += outer_product(v_node[i], w_dx);
         sums.D += outer_product(w_dx, dx[i]);
         sums.node_scale = std::max(sums.node_scale, dx[i].norm_square());
       }
-    sums.gradient += weights().entry_velocity_gradient(k, v_node, v);
+    sums.gradient += entry_velocity_gradient(k, v_node);
   }
 
 
@@ -223,7 +246,7 @@ namespace MPM
                            const Tensor<2, dim> *C,
                            VertexValues        &remapped) {
       const double *props = this->points[weights().point_of_entry(k)];
-      const double  m = weights().share_of_entry(k) * props[Layout::mass];
+      const double         m  = props[Layout::mass];
       const Tensor<1, dim> v  = read_vector<dim>(&props[Layout::velocity]);
       const auto          &N  = this->shape_functions[k].value;
       if (C != nullptr)
@@ -274,7 +297,7 @@ namespace MPM
                 if (fit_affine)
                   {
                     AffineFitSums sums;
-                    add_to_affine_fit(cell, k, v_node, v_new, sums);
+                    add_to_affine_fit(cell, k, v_node, sums);
                     C = Apic<dim>::fit_affine(sums.B,
                                               sums.D,
                                               sums.gradient,
@@ -313,12 +336,11 @@ namespace MPM
                     a += N[i] * a_node[i];
                     v += N[i] * v_node[i];
                   }
-                const unsigned int p     = weights().point_of_entry(k);
-                const double       alpha = weights().share_of_entry(k);
-                point_sum_a[p] += alpha * a;
-                point_sum_v[p] += alpha * v;
+                const unsigned int p = weights().point_of_entry(k);
+                point_sum_a[p] += a;
+                point_sum_v[p] += v;
                 if (fit_affine)
-                  add_to_affine_fit(cell, k, v_node, v, point_affine_fit[p]);
+                  add_to_affine_fit(cell, k, v_node, point_affine_fit[p]);
               }
           }
         // 2. The points, in the order of point_properties().
@@ -386,14 +408,10 @@ namespace MPM
     // this velocity gradient (Apic::store_affine()).
     const bool store_gradient =
       set_affine && !this->second_moment_bounded_below();
-    // The velocity gradient at entry k of @p cell (nodal values @p v_node).
+    // Entry k's velocity gradient (nodal values @p v_node of its cell).
     const auto entry_gradient = [this](const unsigned int  k,
                                        const VertexValues &v_node) {
-      const auto    &N = this->shape_functions[k].value;
-      Tensor<1, dim> v;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        v += N[i] * v_node[i];
-      return weights().entry_velocity_gradient(k, v_node, v);
+      return entry_velocity_gradient(k, v_node);
     };
     // The stress, volume and weights' own data of point p from its
     // gradient.
@@ -521,8 +539,7 @@ namespace MPM
     const auto project = [this](const unsigned int    k,
                                 const Tensor<1, dim> &v_p,
                                 VertexValues         &sums) {
-      const double m = weights().share_of_entry(k) *
-                       this->points[weights().point_of_entry(k)][Layout::mass];
+      const double m = this->points[weights().point_of_entry(k)][Layout::mass];
       const Tensor<1, dim> mv = m * v_p;
       const auto          &N  = this->shape_functions[k].value;
       for (unsigned int i = 0; i < n_vertices; ++i)
@@ -538,7 +555,7 @@ namespace MPM
             const unsigned int end    = cell.first_entry + cell.n_points;
             for (unsigned int k = cell.first_entry; k < end; ++k)
               point_sum_v[weights().point_of_entry(k)] +=
-                weights().share_of_entry(k) * interpolate(k, u_node);
+                interpolate(k, u_node);
           }
       }
     // S: the points' momentum back to the nodes with the same weights.
@@ -582,7 +599,7 @@ namespace MPM
           if constexpr (Weights::entries_are_points)
             D[k] = D_k;
           else
-            D[weights().point_of_entry(k)] += weights().share_of_entry(k) * D_k;
+            D[weights().point_of_entry(k)] += D_k;
         }
   }
 } // namespace MPM
