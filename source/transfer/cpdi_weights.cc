@@ -61,6 +61,11 @@ namespace MPM
     {
       if constexpr (dim == 2)
         {
+          // A parallelogram's inverse map is Cramer's rule: cheaper than any
+          // test before it (what the edge test below rejects, points farther
+          // out than contains()' tolerance, 1e-12 of the cell, rejects).
+          if (map->is_parallelogram())
+            return map->contains(x, xi);
           // The bilinear cell is the convex quadrilateral of its straight
           // edges: outside one edge's line (by more than round-off) is
           // outside the cell, four cross products instead of the inverse
@@ -121,13 +126,14 @@ namespace MPM
       if (cell->is_locally_owned())
         {
           auto &patch = cell_patches[cell->active_cell_index()];
-          patch.push_back(cell);
+          patch.push_back(cell->active_cell_index());
           for (const unsigned int v : cell->vertex_indices())
             for (const auto &neighbour : sets[cell->vertex_index(v)])
               if (!neighbour->is_artificial() &&
-                  std::find(patch.begin(), patch.end(), neighbour) ==
-                    patch.end())
-                patch.push_back(neighbour);
+                  std::find(patch.begin(),
+                            patch.end(),
+                            neighbour->active_cell_index()) == patch.end())
+                patch.push_back(neighbour->active_cell_index());
         }
   }
 
@@ -206,6 +212,7 @@ namespace MPM
             std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
             std::array<const BilinearCellMap *, 64>                   map_of;
             AssertThrow(patch.size() <= 64, ExcInternalError());
+            const unsigned char n_patch = patch.size();
             for (unsigned int i = 0; i < patch.size(); ++i)
               {
                 vertices_of[i] = &grid.cell_vertices(patch[i]);
@@ -233,25 +240,25 @@ namespace MPM
                     props[domain_slot + PointDomains<dim>::scale_slot] = 1;
                   }
                 const Point<dim> x_p = point->get_location();
-                std::array<Point<dim>, n_corners>   x;
-                std::array<CellIterator, n_corners> corner_cell;
-                std::array<Point<dim>, n_corners>   xi;
+                std::array<Point<dim>, n_corners> x;
+                // Where each corner lies: its cell's position in the patch.
+                std::array<unsigned char, n_corners> corner_cell;
+                std::array<Point<dim>, n_corners>    xi;
                 // Whether the corners are still x_p + s D_c (none moved onto a
                 // cell).
                 bool parallelepiped = true;
                 // Whether @p y lies within 2 % of the reference cell of
-                // @p candidate; if so @p y is moved onto the cell (its
-                // reference coordinates clamped to [0, 1]) and @p eta are they,
-                // with corner_cell set.
-                const auto nearly_contains = [&](const CellIterator &candidate,
-                                                 Point<dim>         &y,
-                                                 Point<dim>         &eta) {
-                  const auto &vertices = grid.cell_vertices(candidate);
+                // the patch's cell @p i; if so @p y is moved onto the cell (its
+                // reference coordinates clamped to [0, 1]) and @p eta are they.
+                const auto nearly_contains = [&](const unsigned int i,
+                                                 Point<dim>        &y,
+                                                 Point<dim>        &eta) {
+                  const auto &vertices = *vertices_of[i];
                   if (!in_bounding_box<dim>(vertices, y, 0.05))
                     return false;
                   InverseMappingResult<dim> result;
                   if constexpr (dim == 2)
-                    result = grid.bilinear_map(candidate).inverse(y);
+                    result = map_of[i]->inverse(y);
                   else
                     result = inverse_map_newton<dim>(vertices, y);
                   if (!result.success || !inside_unit_cell(result.xi, 0.02))
@@ -271,7 +278,7 @@ namespace MPM
                       x[c] =
                         x_p + s * D[c];
                       bool found = false;
-                      for (unsigned int j = 0; j <= patch.size(); ++j)
+                      for (unsigned int j = 0; j <= n_patch; ++j)
                         {
                           // The previous point's cell of this corner first.
                           const unsigned int i =
@@ -284,7 +291,7 @@ namespace MPM
                                                  x[c],
                                                  xi[c]))
                             {
-                              corner_cell[c] = patch[i];
+                              corner_cell[c] = i;
                               last_found[c]  = i;
                               found          = true;
                               break;
@@ -294,10 +301,10 @@ namespace MPM
                       // from the Jacobian at the point pokes out of a
                       // distorted boundary cell by O(distortion * size^2)):
                       // moved onto the nearest cell's boundary.
-                      for (unsigned int i = 0; !found && i < patch.size(); ++i)
-                        if (nearly_contains(patch[i], x[c], xi[c]))
+                      for (unsigned int i = 0; !found && i < n_patch; ++i)
+                        if (nearly_contains(i, x[c], xi[c]))
                           {
-                            corner_cell[c] = patch[i];
+                            corner_cell[c] = i;
                             found          = true;
                           }
                       if (!found)
@@ -339,7 +346,7 @@ namespace MPM
                         for (unsigned int c = 0; c < n_corners; ++c)
                           {
                             x[c] = x_p + scale * D[c];
-                            corner_cell[c] = cell;
+                            corner_cell[c] = 0;
                             if constexpr (dim == 2)
                               xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
                             else
@@ -380,7 +387,7 @@ namespace MPM
                     while (corner_cell[first] != corner_cell[c])
                       ++first;
                     corners[std::size_t(p) * n_corners + c] = {
-                      corner_cell[c], xi[c], alpha[c], beta[c], first};
+                      patch[corner_cell[c]], first, xi[c], alpha[c], beta[c]};
                   }
               }
           }
@@ -396,13 +403,12 @@ namespace MPM
     // reset below for the touched cells only: no per-step cost in the size
     // of the mesh.
     auto &slot_of_cell = corner_slot_of_cell;
-    std::vector<CellIterator> touched;
+    std::vector<unsigned int> touched;
     std::vector<unsigned int> count;
     for (std::size_t j = 0; j < corners.size(); ++j)
       if (corners[j].first_in_cell == j % n_corners)
         {
-          unsigned int &slot =
-            slot_of_cell[corners[j].cell->active_cell_index()];
+          unsigned int &slot = slot_of_cell[corners[j].cell];
           if (slot == numbers::invalid_unsigned_int)
             {
               slot = touched.size();
@@ -429,7 +435,7 @@ namespace MPM
           j - j % n_corners + corners[j].first_in_cell;
         entry_of_corner[j] =
           first == j ?
-            next[slot_of_cell[corners[j].cell->active_cell_index()]]++ :
+            next[slot_of_cell[corners[j].cell]]++ :
             entry_of_corner[first];
       }
     for_each_chunk(
@@ -460,8 +466,8 @@ namespace MPM
                 }
             }
       });
-    for (const CellIterator &cell : touched)
-      slot_of_cell[cell->active_cell_index()] = numbers::invalid_unsigned_int;
+    for (const unsigned int cell : touched)
+      slot_of_cell[cell] = numbers::invalid_unsigned_int;
 
     this->clear_active_cells();
     for (unsigned int s = 0; s < touched.size(); ++s)

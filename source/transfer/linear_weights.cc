@@ -33,7 +33,7 @@ namespace MPM
         const typename Triangulation<dim>::active_cell_iterator cell =
           it->get_surrounding_cell();
         const auto points = particle_handler.particles_in_cell(cell);
-        this->add_active_cell(cell,
+        this->add_active_cell(cell->active_cell_index(),
                               particle_handler.n_particles_in_cell(cell),
                               points.begin());
         it = points.end();

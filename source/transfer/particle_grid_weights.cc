@@ -89,17 +89,17 @@ namespace MPM
   template <int dim>
   void
   ParticleGridWeights<dim>::add_active_cell(
-    const typename Triangulation<dim>::active_cell_iterator &cell,
-    const unsigned int                                       n,
+    const unsigned int cell_index,
+    const unsigned int n,
     const typename Particles::ParticleHandler<dim>::particle_iterator
       &first_point)
   {
     const BackgroundGrid<dim> &grid = context.grid;
     ActiveCell active{};
     active.n_points    = n;
-    active.dofs        = context.local_dofs_of_cells[cell->active_cell_index()];
-    active.vertices    = &grid.cell_vertices(cell);
-    active.size        = grid.cell_size(cell);
+    active.dofs        = context.local_dofs_of_cells[cell_index];
+    active.vertices    = &grid.cell_vertices(cell_index);
+    active.size        = grid.cell_size(cell_index);
     active.first_entry = active_cells.empty() ?
                            0 :
                            active_cells.back().first_entry +
@@ -107,7 +107,7 @@ namespace MPM
     active.first_point = first_point;
     shortest_edge = std::min(shortest_edge, active.size);
     if constexpr (dim == 2)
-      active.map = &grid.bilinear_map(cell);
+      active.map = &grid.bilinear_map(cell_index);
     active_cells.push_back(active);
   }
 

@@ -85,7 +85,14 @@ namespace MPM
     double
     cell_size(const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
-      return cell_sizes[cell->active_cell_index()];
+      return cell_size(cell->active_cell_index());
+    }
+
+    /// cell_size() of the cell with active_cell_index() @p index.
+    double
+    cell_size(const unsigned int index) const
+    {
+      return cell_sizes[index];
     }
 
     /**
@@ -104,6 +111,13 @@ namespace MPM
       return vertices_of_cells[cell->active_cell_index()];
     }
 
+    /// cell_vertices() of the cell with active_cell_index() @p index.
+    const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell> &
+    cell_vertices(const unsigned int index) const
+    {
+      return vertices_of_cells[index];
+    }
+
     /**
      * The bilinear map of each locally relevant active cell in the form
      * the closed-form inverse mapping and the shape functions use it,
@@ -114,8 +128,15 @@ namespace MPM
     bilinear_map(
       const typename Triangulation<dim>::active_cell_iterator &cell) const
     {
-      AssertIndexRange(cell->active_cell_index(), bilinear_maps.size());
-      return bilinear_maps[cell->active_cell_index()];
+      return bilinear_map(cell->active_cell_index());
+    }
+
+    /// bilinear_map() of the cell with active_cell_index() @p index.
+    const BilinearCellMap &
+    bilinear_map(const unsigned int index) const
+    {
+      AssertIndexRange(index, bilinear_maps.size());
+      return bilinear_maps[index];
     }
 
     /**

@@ -117,13 +117,14 @@ namespace MPM
     /// entries.
     struct LocatedCorner
     {
-      CellIterator   cell;
+      /// The active_cell_index() of the cell the corner lies in.
+      unsigned int cell;
+      /// The point's first corner in the same cell (this corner's, if it
+      /// is the first): the corners of one entry.
+      unsigned char  first_in_cell;
       Point<dim>     xi;
       double         alpha;
       Tensor<1, dim> beta;
-      /// The point's first corner in the same cell (this corner's, if it
-      /// is the first): the corners of one entry.
-      unsigned char first_in_cell;
     };
     /// n_corners per point, in the order of the points.
     std::vector<LocatedCorner> located_corners;
@@ -142,8 +143,9 @@ namespace MPM
     /// Each point's cell map (2D).
     std::vector<const BilinearCellMap *> point_cell_map;
     /// The cells a corner of a point in each locally owned cell may lie in
-    /// (by active_cell_index(); the cell itself first).
-    std::vector<std::vector<CellIterator>> cell_patches;
+    /// (their active_cell_index(), by active_cell_index(); the cell itself
+    /// first).
+    std::vector<std::vector<unsigned int>> cell_patches;
   };
 } // namespace MPM
 

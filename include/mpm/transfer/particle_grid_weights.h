@@ -279,13 +279,13 @@ namespace MPM
     void
     clear_active_cells();
 
-    /// Append @p cell with @p n entries (after those of the cells added
-    /// before) to active_cells and mark its nodal entries as touched;
+    /// Append the cell with active_cell_index() @p cell_index with @p n
+    /// entries (after those of the cells added before) to active_cells;
     /// @p first_point is its first point if the entries are the points.
     void
     add_active_cell(
-      const typename Triangulation<dim>::active_cell_iterator &cell,
-      const unsigned int                                       n,
+      const unsigned int cell_index,
+      const unsigned int n,
       const typename Particles::ParticleHandler<dim>::particle_iterator
         &first_point = {});
 
