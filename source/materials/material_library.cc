@@ -132,6 +132,7 @@ namespace MPM
                              message);
           }
         m.state_dependent_stiffness = m.model->stiffness_depends_on_state();
+        n_state_slots = std::max(n_state_slots, m.model->n_state_variables());
         materials.push_back(std::move(m));
         prm.leave_subsection();
       }
@@ -187,16 +188,6 @@ namespace MPM
     throw InputError(parameter + " = '" + name +
                      "' is not a material of 'Materials/List of materials' (" +
                      known + ").");
-  }
-
-
-  unsigned int
-  MaterialLibrary::max_n_state_variables() const
-  {
-    unsigned int n = 0;
-    for (const auto &m : materials)
-      n = std::max(n, m.model->n_state_variables());
-    return n;
   }
 
 

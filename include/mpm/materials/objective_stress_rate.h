@@ -67,25 +67,62 @@ namespace MPM
     }
 
     /**
-     * Rotate @p stress with the spin of the velocity gradient @p grad_v
-     * (dim x dim; in 2D the plane strain rotation about z) over the time
-     * step @p dt. Nothing with 'none'.
+     * The rotation of the spin of the velocity gradient @p grad_v (dim x
+     * dim; in 2D the plane strain rotation about z) over the time step
+     * @p dt, in the form rotate() applies it: computed once for the two
+     * half-step rotations of a stress update.
      */
     template <int dim>
-    void
-    rotate(SymmetricTensor<2, 3>  &stress,
-           const Tensor<2, dim>   &grad_v,
-           const double            dt) const
+    struct Rotation
     {
+      /// 'none': rotate() does nothing.
+      bool identity = true;
+      /// 2D: cos and sin of the angle about z.
+      double c = 1, s = 0;
+      /// 3D: the rotation matrix.
+      Tensor<2, 3> Q;
+    };
+
+    template <int dim>
+    Rotation<dim>
+    rotation(const Tensor<2, dim> &grad_v, const double dt) const
+    {
+      Rotation<dim> R;
       if (rate == Type::none)
+        return R;
+      R.identity = false;
+      if constexpr (dim == 2)
+        {
+          const double a     = 0.25 * dt * (grad_v[0][1] - grad_v[1][0]);
+          const double scale = 1. / (1. + a * a);
+          R.c                = (1. - a * a) * scale;
+          R.s                = 2. * a * scale;
+        }
+      else
+        {
+          Tensor<2, 3> H;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              H[i][j] = 0.25 * dt * (grad_v[i][j] - grad_v[j][i]);
+          const double h2 = H[0][1] * H[0][1] + H[0][2] * H[0][2] +
+                            H[1][2] * H[1][2];
+          R.Q = (2. / (1. + h2)) * (H + H * H);
+          for (unsigned int i = 0; i < 3; ++i)
+            R.Q[i][i] += 1.;
+        }
+      return R;
+    }
+
+    /// Rotate @p stress by @p R (rotation()).
+    template <int dim>
+    static void
+    rotate(SymmetricTensor<2, 3> &stress, const Rotation<dim> &R)
+    {
+      if (R.identity)
         return;
       if constexpr (dim == 2)
         {
-          // Q = [[c, s], [-s, c]] in the plane with a = dt W_xy / 2:
-          // c = (1 - a^2) / (1 + a^2), s = 2 a / (1 + a^2).
-          const double a     = 0.25 * dt * (grad_v[0][1] - grad_v[1][0]);
-          const double scale = 1. / (1. + a * a);
-          const double c = (1. - a * a) * scale, s = 2. * a * scale;
+          const double c = R.c, s = R.s;
           const double xx = stress[0][0], yy = stress[1][1],
                        xy = stress[0][1];
           const double cc = c * c, ss = s * s, cs = c * s;
@@ -98,23 +135,26 @@ namespace MPM
         }
       else
         {
-          // The Cayley transform of the skew half-step spin
-          // H = dt W / 2 with axial vector h: Q = I + 2 (H + H^2) / (1 + h.h).
-          Tensor<2, 3> H;
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
-              H[i][j] = 0.25 * dt * (grad_v[i][j] - grad_v[j][i]);
-          const double h2 = H[0][1] * H[0][1] + H[0][2] * H[0][2] +
-                            H[1][2] * H[1][2];
-          Tensor<2, 3> Q = (2. / (1. + h2)) * (H + H * H);
-          for (unsigned int i = 0; i < 3; ++i)
-            Q[i][i] += 1.;
           const Tensor<2, 3> sigma   = stress;
-          const Tensor<2, 3> rotated = Q * sigma * transpose(Q);
+          const Tensor<2, 3> rotated = R.Q * sigma * transpose(R.Q);
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = i; j < 3; ++j)
               stress[i][j] = 0.5 * (rotated[i][j] + rotated[j][i]);
         }
+    }
+
+    /**
+     * Rotate @p stress with the spin of the velocity gradient @p grad_v
+     * over the time step @p dt: rotate(stress, rotation(grad_v, dt)).
+     * Nothing with 'none'.
+     */
+    template <int dim>
+    void
+    rotate(SymmetricTensor<2, 3> &stress,
+           const Tensor<2, dim>  &grad_v,
+           const double           dt) const
+    {
+      rotate<dim>(stress, rotation<dim>(grad_v, dt));
     }
 
   private:
