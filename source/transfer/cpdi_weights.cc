@@ -169,7 +169,7 @@ namespace MPM
     this->point_cell_begin.clear();
     this->point_cell_size.clear();
     point_cells.clear();
-    first_point_of_cell.clear();
+    this->point_cell_first_point.clear();
     unsigned int n_counted = 0;
     for (auto it = particle_handler.begin(); it != particle_handler.end();)
       {
@@ -178,7 +178,7 @@ namespace MPM
         this->point_cell_begin.push_back(n_counted);
         this->point_cell_size.push_back(this->context.grid.cell_size(cell));
         point_cells.push_back(cell);
-        first_point_of_cell.push_back(points.begin());
+        this->point_cell_first_point.push_back(points.begin());
         n_counted += particle_handler.n_particles_in_cell(cell);
         it = points.end();
       }
@@ -220,7 +220,7 @@ namespace MPM
               }
             std::array<unsigned int, n_corners> last_found;
             last_found.fill(0);
-            auto point = first_point_of_cell[pc];
+            auto point = this->point_cell_first_point[pc];
             for (; p < p_end; ++point, ++p)
               {
                 double *props       = point->get_properties().data();

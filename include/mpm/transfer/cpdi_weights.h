@@ -132,11 +132,10 @@ namespace MPM
     std::vector<Point<dim>> point_centre;
     /// The entry each of located_corners adds to.
     std::vector<unsigned int> entry_of_corner;
-    /// The cells holding points this step, and each one's first point.
+    /// The cells holding points this step (their first points are
+    /// point_cell_first_point).
     std::vector<typename Triangulation<dim>::active_cell_iterator>
       point_cells;
-    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
-      first_point_of_cell;
     /// Each active cell's slot among the cells holding corners
     /// (invalid_unsigned_int between steps).
     std::vector<unsigned int> corner_slot_of_cell;

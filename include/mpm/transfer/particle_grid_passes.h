@@ -41,9 +41,10 @@ namespace MPM
    *   not the points): the map of point p's own cell (2D).
    *
    * A weight function whose entries are not its points also fills
-   * point_cell_begin and point_cell_size in prepare() (the points grouped
-   * by their own cell, for volumetric averaging and the cell size of the
-   * stress update).
+   * point_cell_begin, point_cell_first_point and point_cell_size in
+   * prepare() (the points grouped by their own cell: for volumetric
+   * averaging, the cell size of the stress update, and the points'
+   * updates on the available threads).
    *
    * The velocity transfer scheme enters through TransferScheme and Apic:
    * with APIC, each entry maps its point's affine field v_p + C_p dx_i, and
@@ -104,6 +105,10 @@ namespace MPM
      * entries are not the points.
      */
     std::vector<unsigned int> point_cell_begin;
+    /// The ParticleHandler's iterator to the first point of each of those
+    /// cells.
+    std::vector<typename Particles::ParticleHandler<dim>::particle_iterator>
+      point_cell_first_point;
     /// BackgroundGrid::cell_size() of each of those cells.
     std::vector<double> point_cell_size;
 

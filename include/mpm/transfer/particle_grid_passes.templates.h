@@ -232,7 +232,6 @@ namespace MPM
     using Layout           = PropertyLayout<dim>;
     NodalFields &nodal     = this->context.nodal;
     auto        &updater   = this->context.point_update;
-    auto        &particles = this->context.particle_handler;
     // APIC: the new C_p is fitted here, except under MUSL on weights whose
     // second moment can vanish: there it is the gradient of the remapped
     // velocity (update_stress()) and the remap below is PIC's.
@@ -343,32 +342,47 @@ namespace MPM
                   add_to_affine_fit(cell, k, v_node, point_affine_fit[p]);
               }
           }
-        // 2. The points, in the order of point_properties().
+        // 2. The points, in chunks of their own cells (point_cell_begin),
+        //    what they find taken over in chunk order.
         if (fit_affine)
           point_affine.resize(n_points);
-        typename PointUpdate<dim>::Findings findings;
-        unsigned int                        p = 0;
-        for (auto point = particles.begin(); point != particles.end();
-             ++point, ++p)
-          {
-            updater.advance(point,
-                            this->points[p],
-                            point_sum_a[p],
-                            point_sum_v[p],
-                            weights().cell_map_of_point(p),
-                            findings);
-            if (fit_affine)
+        const unsigned int n_point_cells =
+          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
+        chunk_findings.resize(
+          chunk_count(n_point_cells, this->cell_chunk_size));
+        for_each_chunk(
+          n_point_cells,
+          this->cell_chunk_size,
+          [&](const unsigned int chunk,
+              const unsigned int first,
+              const unsigned int last) {
+            for (unsigned int c = first; c < last; ++c)
               {
-                const AffineFitSums &sums = point_affine_fit[p];
-                point_affine[p] =
-                  Apic<dim>::fit_affine(sums.B,
-                                        sums.D,
-                                        sums.gradient,
-                                        sums.node_scale,
-                                        this->points[p] + this->transfer_slot);
+                auto point = point_cell_first_point[c];
+                for (unsigned int p = point_cell_begin[c];
+                     p < point_cell_begin[c + 1];
+                     ++p, ++point)
+                  {
+                    updater.advance(point,
+                                    this->points[p],
+                                    point_sum_a[p],
+                                    point_sum_v[p],
+                                    weights().cell_map_of_point(p),
+                                    chunk_findings[chunk]);
+                    if (fit_affine)
+                      {
+                        const AffineFitSums &sums = point_affine_fit[p];
+                        point_affine[p]           = Apic<dim>::fit_affine(
+                          sums.B,
+                          sums.D,
+                          sums.gradient,
+                          sums.node_scale,
+                          this->points[p] + this->transfer_slot);
+                      }
+                  }
               }
-          }
-        v_max2 = updater.record(findings);
+          });
+        v_max2 = record_chunk_findings();
         // 3. MUSL: the points' new momentum back to the nodes.
         if (remap_momentum)
           {
