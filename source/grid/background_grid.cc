@@ -505,6 +505,14 @@ namespace MPM
             bilinear_maps[cell->active_cell_index()] =
               BilinearCellMap(vertices_of_cells[cell->active_cell_index()]);
       }
+    else
+      {
+        parallelepiped_maps.assign(triangulation.n_active_cells(), {});
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (!cell->is_artificial())
+            parallelepiped_maps[cell->active_cell_index()] = ParallelepipedMap(
+              vertices_of_cells[cell->active_cell_index()]);
+      }
 
     dof_handler.distribute_dofs(fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();

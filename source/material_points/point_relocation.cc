@@ -97,13 +97,28 @@ namespace MPM
             continue;
           }
         const auto &vertices = grid->cell_vertices(cell);
+        // A parallelepiped (3D) is inverted by one product instead of
+        // Newton's iteration (not with 'Inverse mapping = deal.II').
+        const ParallelepipedMap *affine_map = nullptr;
+        if constexpr (dim == 3)
+          if (inverse_type == InverseMappingType::newton &&
+              grid->parallelepiped_map(cell->active_cell_index()).is_affine())
+            affine_map = &grid->parallelepiped_map(cell->active_cell_index());
         for (auto point = points.begin(); point != points.end(); ++point)
           {
             const Point<dim> x = point->get_location();
-            const auto       result =
-              by_vertices ?
-                      inverse_mapping->transform_real_to_unit_cell(vertices, x) :
-                      inverse_mapping->transform_real_to_unit_cell(cell, x);
+            InverseMappingResult<dim> result;
+            if constexpr (dim == 3)
+              if (affine_map != nullptr)
+                {
+                  result.xi      = affine_map->inverse(x);
+                  result.success = true;
+                }
+            if (!result.success)
+              result =
+                by_vertices ?
+                  inverse_mapping->transform_real_to_unit_cell(vertices, x) :
+                  inverse_mapping->transform_real_to_unit_cell(cell, x);
             if (result.success && inside_unit_cell(result.xi))
               point->set_reference_location(result.xi);
             else

@@ -48,16 +48,18 @@ namespace MPM
     }
 
 
-    /// Whether the cell with @p vertices (and, in 2D, @p map) contains
-    /// @p x, and its reference coordinates @p xi there.
+    /// Whether the cell with @p vertices (and, in 2D, @p map; in 3D,
+    /// @p parallelepiped) contains @p x, and its reference coordinates
+    /// @p xi there.
     template <int dim>
     bool
     cell_contains(
       const std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>
                             &vertices,
-      const BilinearCellMap *map,
-      const Point<dim>      &x,
-      Point<dim>            &xi)
+      const BilinearCellMap   *map,
+      const ParallelepipedMap *parallelepiped,
+      const Point<dim>        &x,
+      Point<dim>              &xi)
     {
       if constexpr (dim == 2)
         {
@@ -89,6 +91,12 @@ namespace MPM
       else
         {
           (void)map;
+          // A parallelepiped: one product (ParallelepipedMap).
+          if (parallelepiped != nullptr && parallelepiped->is_affine())
+            {
+              xi = parallelepiped->inverse(x);
+              return inside_unit_cell(xi);
+            }
           if (!in_bounding_box<dim>(vertices, x, 0.))
             return false;
           const auto result = inverse_map_newton<dim>(vertices, x);
@@ -211,12 +219,15 @@ namespace MPM
             // of a cell are alike: tried first).
             std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
             std::array<const BilinearCellMap *, 64>                   map_of;
+            std::array<const ParallelepipedMap *, 64> parallelepiped_of;
             AssertThrow(patch.size() <= 64, ExcInternalError());
             const unsigned char n_patch = patch.size();
             for (unsigned int i = 0; i < patch.size(); ++i)
               {
                 vertices_of[i] = &grid.cell_vertices(patch[i]);
                 map_of[i] = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
+                parallelepiped_of[i] =
+                  dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
               }
             std::array<unsigned int, n_corners> last_found;
             last_found.fill(0);
@@ -288,6 +299,7 @@ namespace MPM
                             continue;
                           if (cell_contains<dim>(*vertices_of[i],
                                                  map_of[i],
+                                                 parallelepiped_of[i],
                                                  x[c],
                                                  xi[c]))
                             {

@@ -13,6 +13,7 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <mpm/grid/bilinear_cell_map.h>
+#include <mpm/grid/parallelepiped_map.h>
 #include <mpm/grid/terrain.h>
 
 #include <array>
@@ -140,6 +141,19 @@ namespace MPM
     }
 
     /**
+     * The affine map of each locally relevant active cell that is a
+     * parallelepiped (ParallelepipedMap::is_affine(); not affine for the
+     * others), by active_cell_index(); computed once. 3D only (empty in
+     * 2D, where bilinear_map() has the parallelogram case).
+     */
+    const ParallelepipedMap &
+    parallelepiped_map(const unsigned int index) const
+    {
+      AssertIndexRange(index, parallelepiped_maps.size());
+      return parallelepiped_maps[index];
+    }
+
+    /**
      * @name Scene rotation.
      * The parameter file describes a scene in its own frame; "Mesh/Scene
      * rotation angle" turns the whole scene (about "Scene rotation axis"
@@ -254,7 +268,8 @@ namespace MPM
     std::vector<double> cell_sizes;
     std::vector<std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>>
       vertices_of_cells;
-    std::vector<BilinearCellMap> bilinear_maps;
+    std::vector<BilinearCellMap>   bilinear_maps;
+    std::vector<ParallelepipedMap> parallelepiped_maps;
   };
 } // namespace MPM
 
