@@ -852,7 +852,39 @@ namespace MPM
           return;
         }
 
-      // General 3D stress: the QL decomposition rather than the
+      // General 3D stress. A point that is elastic by a margin (most
+      // points of a body at rest or in elastic motion) needs no principal
+      // stresses: with p the mean stress and J2 the second invariant of
+      // the deviator, sigma_1 - sigma_3 <= 2 sqrt(J2), sigma_1 + sigma_3 <=
+      // 2 p + sqrt(J2 / 3) and sigma_1 <= p + 2 sqrt(J2 / 3), so if these
+      // bounds leave the Mohr-Coulomb plane and the tension cutoff below
+      // zero by more than round-off, every surface is (the same answer,
+      // stress = trial, as the test on the principal values below; the
+      // eigenvectors were two thirds of a 3D Mohr-Coulomb step).
+      if constexpr (!with_softening)
+        {
+          const double p  = (trial[0][0] + trial[1][1] + trial[2][2]) / 3.;
+          const double dx = trial[0][0] - p, dy = trial[1][1] - p,
+                       dz = trial[2][2] - p;
+          const double J2 = 0.5 * (dx * dx + dy * dy + dz * dz) +
+                            trial[0][1] * trial[0][1] +
+                            trial[0][2] * trial[0][2] +
+                            trial[1][2] * trial[1][2];
+          const double root_J2      = std::sqrt(J2);
+          const double root_J2_by_3 = std::sqrt(J2 / 3.);
+          const double sin_phi      = peak.gradient[0][0] - 1.;
+          const double k            = peak.bound[0];
+          const double t            = peak.bound[3];
+          const double margin =
+            1e-10 * (std::abs(p) + root_J2 + std::abs(k) + std::abs(t));
+          if (2. * root_J2 + sin_phi * (2. * p + root_J2_by_3) - k < -margin &&
+              p + 2. * root_J2_by_3 - t < -margin)
+            {
+              stress = trial;
+              return;
+            }
+        }
+      // The QL decomposition rather than the
       // closed-form eigenvalues(): the latter loses half the digits when
       // two principal stresses coincide, which is exactly where the edge
       // returns put them, and a returned stress would then look slightly
