@@ -128,6 +128,16 @@ namespace MPM
     for_active_cells(const std::array<NodalVector *, n_targets> &targets,
                      const Body                                 &body);
 
+    /**
+     * Call @p body(c, chunk) for every cell c holding points (the points
+     * grouped by their own cell: point_cell_begin), in chunks of
+     * cell_chunk_size cells on the available threads, with chunk_findings
+     * sized for the chunks (weights whose entries are not the points).
+     */
+    template <typename Body>
+    void
+    for_point_cells(const Body &body);
+
     /// for_active_cells()'s sums of the cells on chunk borders (by
     /// border_index).
     std::vector<VertexValues> cell_sums;

@@ -76,6 +76,25 @@ namespace MPM
 
 
   template <int dim, class Weights>
+  template <typename Body>
+  void
+  ParticleGridPasses<dim, Weights>::for_point_cells(const Body &body)
+  {
+    const unsigned int n_point_cells =
+      point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
+    chunk_findings.resize(chunk_count(n_point_cells, this->cell_chunk_size));
+    for_each_chunk(n_point_cells,
+                   this->cell_chunk_size,
+                   [&](const unsigned int chunk,
+                       const unsigned int first,
+                       const unsigned int last) {
+                     for (unsigned int c = first; c < last; ++c)
+                       body(c, chunk);
+                   });
+  }
+
+
+  template <int dim, class Weights>
   double
   ParticleGridPasses<dim, Weights>::record_chunk_findings()
   {
@@ -346,42 +365,30 @@ namespace MPM
         //    what they find taken over in chunk order.
         if (fit_affine)
           point_affine.resize(n_points);
-        const unsigned int n_point_cells =
-          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
-        chunk_findings.resize(
-          chunk_count(n_point_cells, this->cell_chunk_size));
-        for_each_chunk(
-          n_point_cells,
-          this->cell_chunk_size,
-          [&](const unsigned int chunk,
-              const unsigned int first,
-              const unsigned int last) {
-            for (unsigned int c = first; c < last; ++c)
-              {
-                auto point = point_cell_first_point[c];
-                for (unsigned int p = point_cell_begin[c];
-                     p < point_cell_begin[c + 1];
-                     ++p, ++point)
-                  {
-                    updater.advance(point,
-                                    this->points[p],
-                                    point_sum_a[p],
-                                    point_sum_v[p],
-                                    weights().cell_map_of_point(p),
-                                    chunk_findings[chunk]);
-                    if (fit_affine)
-                      {
-                        const AffineFitSums &sums = point_affine_fit[p];
-                        point_affine[p]           = Apic<dim>::fit_affine(
-                          sums.B,
-                          sums.D,
-                          sums.gradient,
-                          sums.node_scale,
-                          this->points[p] + this->transfer_slot);
-                      }
-                  }
-              }
-          });
+        for_point_cells([&](const unsigned int c, const unsigned int chunk) {
+          auto point = point_cell_first_point[c];
+          for (unsigned int p = point_cell_begin[c];
+               p < point_cell_begin[c + 1];
+               ++p, ++point)
+            {
+              updater.advance(point,
+                              this->points[p],
+                              point_sum_a[p],
+                              point_sum_v[p],
+                              weights().cell_map_of_point(p),
+                              chunk_findings[chunk]);
+              if (fit_affine)
+                {
+                  const AffineFitSums &sums = point_affine_fit[p];
+                  point_affine[p] =
+                    Apic<dim>::fit_affine(sums.B,
+                                          sums.D,
+                                          sums.gradient,
+                                          sums.node_scale,
+                                          this->points[p] + this->transfer_slot);
+                }
+            }
+        });
         v_max2 = record_chunk_findings();
         // 3. MUSL: the points' new momentum back to the nodes.
         if (remap_momentum)
@@ -500,34 +507,22 @@ namespace MPM
         if (store_gradient)
           second_moments(point_second_moment);
         // The points in chunks of their own cells (point_cell_begin).
-        const unsigned int n_point_cells =
-          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
-        chunk_findings.resize(
-          chunk_count(n_point_cells, this->cell_chunk_size));
-        for_each_chunk(
-          n_point_cells,
-          this->cell_chunk_size,
-          [&](const unsigned int chunk,
-              const unsigned int first,
-              const unsigned int last) {
-            for (unsigned int c = first; c < last; ++c)
-              {
-                const unsigned int begin = point_cell_begin[c];
-                const unsigned int end   = point_cell_begin[c + 1];
-                if (average)
-                  PointUpdate<dim>::average_volumetric_part(
-                    this->points.data() + begin,
-                    point_gradients.data() + begin,
-                    end - begin);
-                for (unsigned int p = begin; p < end; ++p)
-                  update_point(p,
-                               point_gradients[p],
-                               store_gradient ? point_second_moment[p] :
-                                                Tensor<2, dim>(),
-                               point_cell_size[c],
-                               chunk_findings[chunk]);
-              }
-          });
+        for_point_cells([&](const unsigned int c, const unsigned int chunk) {
+          const unsigned int begin = point_cell_begin[c];
+          const unsigned int end   = point_cell_begin[c + 1];
+          if (average)
+            PointUpdate<dim>::average_volumetric_part(
+              this->points.data() + begin,
+              point_gradients.data() + begin,
+              end - begin);
+          for (unsigned int p = begin; p < end; ++p)
+            update_point(p,
+                         point_gradients[p],
+                         store_gradient ? point_second_moment[p] :
+                                          Tensor<2, dim>(),
+                         point_cell_size[c],
+                         chunk_findings[chunk]);
+        });
       }
     record_chunk_findings();
   }
