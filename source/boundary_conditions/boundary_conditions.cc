@@ -190,6 +190,15 @@ namespace MPM
                       "id " + std::to_string(id) +
                       ", which the mesh does not have (its boundary ids: " +
                       known + ").");
+    const auto periodic = grid.periodic_boundaries.boundary_ids();
+    for (const auto &s : specs)
+      for (const auto id : s.ids)
+        check_input(std::find(periodic.begin(), periodic.end(), id) ==
+                      periodic.end(),
+                    "Boundary conditions/" + s.name + "/Boundary ids names "
+                      "id " + std::to_string(id) +
+                      ", which Mesh/Periodic boundaries makes periodic: a "
+                      "periodic boundary takes no boundary condition.");
   }
 
 

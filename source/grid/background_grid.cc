@@ -163,6 +163,7 @@ namespace MPM
         "rectangle are 0 (x = x_min), 1 (x = x_max), 2 (y = y_min), 3 "
         "(y = y_max).");
       TerrainMesh::declare_parameters(prm);
+      PeriodicBoundaries<dim>::declare_parameters(prm);
       prm.declare_entry("Global refinements",
                         "0",
                         Patterns::Integer(0, 12),
@@ -231,6 +232,7 @@ namespace MPM
                     "z; leave the axis at 0, 0, 1.");
       }
       vertex_perturbation = prm.get_double("Random vertex perturbation");
+      periodic_boundaries.parse_parameters(prm);
     }
     prm.leave_subsection();
     if (source == "gmsh")
@@ -298,6 +300,9 @@ namespace MPM
     // and points then sit close to the edges of thin cells and cross them.
     if (vertex_perturbation > 0)
       GridTools::distort_random(vertex_perturbation, triangulation, true);
+    // On the coarse mesh (p4est's connectivity) and in the parameter
+    // file's frame (the planes of the pairs), before the rotation.
+    periodic_boundaries.apply_to_coarse_mesh(triangulation);
     triangulation.refine_global(n_global_refinements);
 
     check_cell_geometry();
@@ -322,6 +327,7 @@ namespace MPM
           return to_mesh_frame(x);
         },
                              triangulation);
+        periodic_boundaries.set_rotation(rotation);
       }
 
     setup_partition_data();

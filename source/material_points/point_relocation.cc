@@ -3,6 +3,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <mpm/grid/point_location.h>
+#include <mpm/material_points/property_layout.h>
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
@@ -74,6 +75,13 @@ namespace MPM
   {
     if (!incremental)
       {
+        if (!grid->periodic_boundaries.empty())
+          for (auto &point : particle_handler)
+            {
+              Point<dim> x = point.get_location();
+              if (wrap(x, point.get_properties().data()))
+                point.set_location(x);
+            }
         particle_handler.sort_particles_into_subdomains_and_cells();
         ++stats.n_full_sorts;
         return;
@@ -133,6 +141,19 @@ namespace MPM
 
 
   template <int dim>
+  bool
+  PointRelocation<dim>::wrap(Point<dim> &x, const double *properties)
+  {
+    const Tensor<1, dim> shift = grid->periodic_boundaries.wrap(x);
+    if (shift.norm_square() == 0)
+      return false;
+    ++stats.n_points_wrapped;
+    stats.wrapped_mass_shift += properties[PropertyLayout<dim>::mass] * shift;
+    return true;
+  }
+
+
+  template <int dim>
   void
   PointRelocation<dim>::relocate_leavers(
     Particles::ParticleHandler<dim> &particle_handler)
@@ -177,7 +198,11 @@ namespace MPM
     for (const auto &point : leavers)
       {
         const CellIterator old_cell = point->get_surrounding_cell();
-        const Point<dim>   x        = point->get_location();
+        Point<dim>         x        = point->get_location();
+        // Out through a periodic boundary: in through its partner (found
+        // by the search of the whole mesh below).
+        if (wrap(x, point->get_properties().data()))
+          ParticleIterator(point)->set_location(x);
         candidates.clear();
         for (const unsigned int v : old_cell->vertex_indices())
           for (const auto &c : cells_at_vertex[old_cell->vertex_index(v)])

@@ -187,6 +187,10 @@ namespace MPM
               local[v][c] = partitioner->global_to_local(
                 cell_dofs[grid.fe.component_to_system_index(c, v)]);
         }
+    periodic_nodes.reinit(
+      grid.periodic_boundaries.node_groups(grid.dof_handler,
+                                           grid.locally_relevant_dofs),
+      *partitioner);
     boundary_conditions.setup(grid, nodal.mass);
     point_relocation.initialize(grid);
     weights->setup_partition();
@@ -459,6 +463,9 @@ namespace MPM
                "cell order "
             << located.n_reorders << " time(s) (" << located.reorder_seconds
             << " s).\n";
+    if (!grid.periodic_boundaries.empty())
+      pcout << "Periodic boundaries (rank 0): " << located.n_points_wrapped
+            << " point move(s) through them.\n";
     timer.print_summary();
   }
 

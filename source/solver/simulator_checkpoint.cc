@@ -5,6 +5,7 @@
 
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/array.hpp>
 #include <boost/serialization/string.hpp>
 #include <boost/serialization/utility.hpp>
 #include <boost/serialization/vector.hpp>
@@ -44,9 +45,14 @@ namespace MPM
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
     // 2: the removed points' energy appended; 3: the walls' contact state;
-    // 4: the largest state-dependent wave speed (formats 1 to 3 are still
+    // 4: the largest state-dependent wave speed; 5: the points' mass times
+    // their shifts through periodic boundaries (formats 1 to 4 are still
     // read).
-    const unsigned int  format      = 4;
+    const unsigned int  format      = 5;
+    const Tensor<1, dim> wrapped_shift = wrapped_mass_shift();
+    std::array<double, dim> wrapped_shift_values;
+    for (unsigned int d = 0; d < dim; ++d)
+      wrapped_shift_values[d] = wrapped_shift[d];
     const unsigned int  space_dim   = dim;
     std::uint64_t       stats_bytes = 0;
     stats_bytes = statistics_file.length();
@@ -71,7 +77,8 @@ namespace MPM
          << time_step << output_index << max_point_speed << removed_points
          << removed_mass << n_repartitions << stats_bytes << output_writer
          << postprocessor_names << postprocessor_states << removed_energy
-         << contact[0] << contact[1] << max_state_wave_speed;
+         << contact[0] << contact[1] << max_state_wave_speed
+         << wrapped_shift_values;
     }
     return state.str();
   }
@@ -90,7 +97,7 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format >= 1 && format <= 4 && space_dim == dim,
+    check_input(format >= 1 && format <= 5 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -116,6 +123,9 @@ namespace MPM
     // Older checkpoints: the value the set-up computed from the points.
     if (format >= 4)
       ar >> max_state_wave_speed;
+    std::array<double, dim> wrapped_shift_values{};
+    if (format >= 5)
+      ar >> wrapped_shift_values;
     boundary_conditions.set_contact(contact);
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
@@ -128,6 +138,9 @@ namespace MPM
     n_lost_points      = is_root ? removed_points : 0;
     lost_mass          = is_root ? removed_mass : 0;
     lost_energy        = is_root ? removed_energy : 0;
+    for (unsigned int d = 0; d < dim; ++d)
+      wrapped_mass_shift_before_restart[d] =
+        is_root ? wrapped_shift_values[d] : 0;
     for (unsigned int i = 0; i < postprocessors.size(); ++i)
       {
         std::istringstream p_in(postprocessor_states[i]);

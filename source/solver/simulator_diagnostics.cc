@@ -145,15 +145,40 @@ namespace MPM
     s.strain_energy  = Utilities::MPI::sum(s.strain_energy, mpi_communicator);
     s.gravitational_potential_energy =
       Utilities::MPI::sum(s.gravitational_potential_energy, mpi_communicator);
+    // With periodic boundaries: the potential energy and the centre of
+    // mass of the points' unwrapped positions, continuous when a point
+    // wraps (the points of a sliding infinite slope jump back up by a
+    // period's drop when they wrap; the slope goes on releasing energy and
+    // its centre of mass goes on moving down).
+    Tensor<1, dim> unwrapped_centre_shift;
+    if (!grid.periodic_boundaries.empty())
+      {
+        const Tensor<1, dim> shift = wrapped_mass_shift();
+        s.gravitational_potential_energy += time_stepping.gravity * shift;
+        unwrapped_centre_shift = shift;
+      }
     s.removed_energy = Utilities::MPI::sum(lost_energy, mpi_communicator);
     s.mean_speed =
       Utilities::MPI::sum(s.mean_speed, mpi_communicator) /
       std::max<double>(1, s.n_points);
     s.max_speed      = Utilities::MPI::max(s.max_speed, mpi_communicator);
-    s.centre_of_mass = Utilities::MPI::sum(s.centre_of_mass, mpi_communicator) /
-                       (s.mass > 0 ? s.mass : 1);
+    s.centre_of_mass =
+      (Utilities::MPI::sum(s.centre_of_mass, mpi_communicator) -
+       unwrapped_centre_shift) /
+      (s.mass > 0 ? s.mass : 1);
     s.mean_velocity = s.momentum / (s.mass > 0 ? s.mass : 1);
     return s;
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  Simulator<dim>::wrapped_mass_shift() const
+  {
+    return Utilities::MPI::sum(
+      point_relocation.statistics().wrapped_mass_shift +
+        wrapped_mass_shift_before_restart,
+      mpi_communicator);
   }
 
 

@@ -105,6 +105,7 @@ namespace MPM
                            step,
                            time_step,
                            local_dofs_of_cells,
+                           periodic_nodes,
                            timer});
     if (transfer.apic() != nullptr &&
         time_stepping.scheme != UpdateScheme::musl &&

@@ -10,6 +10,7 @@
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/parallel/thread_chunks.h>
+#include <mpm/base/input_error.h>
 #include <mpm/transfer/cpdi_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
 
@@ -123,6 +124,13 @@ namespace MPM
   CpdiWeights<dim>::setup_partition()
   {
     ParticleGridPasses<dim, CpdiWeights<dim>>::setup_partition();
+    // A domain that reaches through a periodic boundary would have its
+    // corners beyond the mesh, where the search below does not look (it
+    // would need the corners' cells across the boundary and the shift of
+    // their weights' centre).
+    check_input(this->context.grid.periodic_boundaries.empty(),
+                "Transfer/Particle-grid weights = cpdi does not support "
+                "Mesh/Periodic boundaries yet; use linear weights.");
     // Each cell's patch: itself first, then the non-artificial cells
     // sharing a vertex with it (where the corners may lie).
     const auto &triangulation = this->context.grid.triangulation;

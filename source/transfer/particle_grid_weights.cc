@@ -153,6 +153,27 @@ namespace MPM
               cells_on_chunk_borders.push_back(c);
             }
         }
+    // The copies of a touched periodic node are touched too: the
+    // particle-to-grid sums give them values (PeriodicNodeGroups), so
+    // they are updated and zeroed with the rest.
+    if (!context.periodic_nodes.empty())
+      {
+        is_touched.resize(chunk_of_dof.size(), false);
+        for (const unsigned int i : touched_dofs)
+          is_touched[i] = true;
+        const unsigned int n_touched_by_cells = touched_dofs.size();
+        for (unsigned int k = 0; k < n_touched_by_cells; ++k)
+          context.periodic_nodes.for_each_copy(touched_dofs[k],
+                                               [&](const unsigned int j) {
+                                                 if (!is_touched[j])
+                                                   {
+                                                     is_touched[j] = true;
+                                                     touched_dofs.push_back(j);
+                                                   }
+                                               });
+        for (const unsigned int i : touched_dofs)
+          is_touched[i] = false;
+      }
     for (const unsigned int i : touched_dofs)
       chunk_of_dof[i] = untouched;
     return shortest_edge;

@@ -14,6 +14,7 @@
 
 #include <mpm/grid/bilinear_cell_map.h>
 #include <mpm/grid/parallelepiped_map.h>
+#include <mpm/grid/periodic_boundaries.h>
 #include <mpm/grid/terrain.h>
 
 #include <array>
@@ -228,6 +229,8 @@ namespace MPM
     DoFHandler<dim>                           dof_handler;
     IndexSet                                  locally_owned_dofs;
     IndexSet                                  locally_relevant_dofs;
+    /// 'Mesh/Periodic boundaries' (none by default).
+    PeriodicBoundaries<dim>                   periodic_boundaries;
 
   private:
     void

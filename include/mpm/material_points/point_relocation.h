@@ -178,6 +178,12 @@ namespace MPM
       unsigned long long n_reorders      = 0;
       /// Wall time spent in the reorderings.
       double             reorder_seconds = 0;
+      /// Points moved through a periodic boundary (PeriodicBoundaries).
+      unsigned long long n_points_wrapped = 0;
+      /// The sum over those moves of the point's mass times its shift:
+      /// the gravitational potential energy of the points' unwrapped
+      /// positions is that of their positions plus gravity times this.
+      Tensor<1, dim>     wrapped_mass_shift;
     };
 
     const Statistics &
@@ -207,6 +213,14 @@ namespace MPM
      */
     void
     reorder_storage(Particles::ParticleHandler<dim> &particle_handler);
+
+    /**
+     * Move @p x through a periodic boundary if it lies beyond one (the
+     * point with @p properties); count the move in the statistics.
+     * Returns whether it moved.
+     */
+    bool
+    wrap(Point<dim> &x, const double *properties);
 
     /**
      * Reorder the storage after this fraction of the points moved to

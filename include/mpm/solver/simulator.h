@@ -172,6 +172,14 @@ namespace MPM
     energy_of_point(const double *props, const Point<dim> &x) const;
 
     /**
+     * The sum over all points and ranks of each point's mass times the
+     * shifts periodic boundaries gave it (PointRelocation::Statistics),
+     * over the whole run, restarts included. Collective.
+     */
+    Tensor<1, dim>
+    wrapped_mass_shift() const;
+
+    /**
      * Angular momentum about the centre of mass @p centre of the points
      * moving with mean velocity @p mean_velocity (3 components; only z in
      * 2D), and its scale sum_p m_p |x_p - centre| |v_p|.
@@ -313,6 +321,8 @@ namespace MPM
     std::vector<std::array<std::array<unsigned int, dim>,
                            GeometryInfo<dim>::vertices_per_cell>>
       local_dofs_of_cells;
+    /// The nodal entries that 'Mesh/Periodic boundaries' make one node.
+    PeriodicNodeGroups periodic_nodes;
 
     /// A point's velocity, position and stress from its interpolated
     /// grid values.
@@ -345,6 +355,8 @@ namespace MPM
     /// Energy the removed points carried (this rank's share; see
     /// GlobalStatistics::removed_energy).
     double                lost_energy   = 0;
+    /// wrapped_mass_shift() of the run before it was resumed (rank 0).
+    Tensor<1, dim>        wrapped_mass_shift_before_restart;
     std::vector<std::string> lost_point_descriptions;
 
     /// Warnings about the input found in the set-up, repeated in the

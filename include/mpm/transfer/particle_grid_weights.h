@@ -11,6 +11,7 @@
 #include <mpm/base/plugin_registry.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
+#include <mpm/grid/periodic_node_groups.h>
 #include <mpm/grid/q1_shape_functions.h>
 #include <mpm/material_points/point_update.h>
 #include <mpm/solver/time_stepping.h>
@@ -52,6 +53,8 @@ namespace MPM
     const std::vector<std::array<std::array<unsigned int, dim>,
                                  GeometryInfo<dim>::vertices_per_cell>>
                 &local_dofs_of_cells;
+    /// The nodal entries that periodic boundaries make one node.
+    const PeriodicNodeGroups &periodic_nodes;
     TimerOutput &timer;
   };
 
@@ -329,13 +332,15 @@ namespace MPM
           v.local_element(cell.dofs[i][c]) += values[i][c];
     }
 
-    /// Sum what every rank added to the entries of @p v (compress) and
-    /// give every rank the sums at its ghost nodes.
-    static void
-    add_contributions_of_all_ranks(NodalVector &v)
+    /// Sum what every rank added to the entries of @p v (compress),
+    /// give every rank the sums at its ghost nodes, and give the copies
+    /// of a periodic node their sum (PeriodicNodeGroups).
+    void
+    add_contributions_of_all_ranks(NodalVector &v) const
     {
       v.compress(VectorOperation::add);
       v.update_ghost_values();
+      context.periodic_nodes.sum(v);
     }
 
     /**
@@ -413,6 +418,9 @@ namespace MPM
   private:
     double                     shortest_edge = 0;
     std::vector<unsigned int>  touched_dofs;
+    /// Periodic boundaries only: per local entry, whether this step
+    /// touches it (while finish_active_cells() adds the copies).
+    std::vector<bool>          is_touched;
     /**
      * Per local nodal entry (by a vertex's first component): untouched
      * outside finish_active_cells(); there, the chunk of the cells that
