@@ -124,32 +124,121 @@ namespace MPM
   CpdiWeights<dim>::setup_partition()
   {
     ParticleGridPasses<dim, CpdiWeights<dim>>::setup_partition();
-    // A domain that reaches through a periodic boundary would have its
-    // corners beyond the mesh, where the search below does not look (it
-    // would need the corners' cells across the boundary and the shift of
-    // their weights' centre).
-    check_input(this->context.grid.periodic_boundaries.empty(),
-                "Transfer/Particle-grid weights = cpdi does not support "
-                "Mesh/Periodic boundaries yet; use linear weights.");
-    // Each cell's patch: itself first, then the non-artificial cells
-    // sharing a vertex with it (where the corners may lie).
     const auto &triangulation = this->context.grid.triangulation;
+    const bool  periodic = !this->context.grid.periodic_boundaries.empty();
+    // With periodic boundaries, each vertex's periodic copies and the
+    // shift from it to each: from the pairs of periodic faces (matched
+    // vertex by vertex, the faces' centres differing by the shift), then
+    // the copies of the copies (a vertex on two periodic planes has three).
+    std::vector<std::vector<std::pair<unsigned int, Tensor<1, dim>>>> copies;
+    if (periodic)
+      {
+        copies.resize(triangulation.n_vertices());
+        const auto add_copy = [&](const unsigned int v,
+                                  const unsigned int w,
+                                  const Tensor<1, dim> &shift) {
+          if (v == w)
+            return false;
+          for (const auto &[u, t] : copies[v])
+            if (u == w)
+              return false;
+          copies[v].emplace_back(w, shift);
+          return true;
+        };
+        for (const auto &[face, other] : triangulation.get_periodic_face_map())
+          {
+            const auto &[cell, f]             = face;
+            const auto &[other_cell, other_f] = other.first;
+            if (!cell->is_active() || !other_cell->is_active() ||
+                cell->is_artificial() || other_cell->is_artificial())
+              continue;
+            const auto           a     = cell->face(f);
+            const auto           b     = other_cell->face(other_f);
+            const Tensor<1, dim> shift = b->center() - a->center();
+            for (const unsigned int i : a->vertex_indices())
+              {
+                unsigned int j_best = 0;
+                double       best   = std::numeric_limits<double>::max();
+                for (const unsigned int j : b->vertex_indices())
+                  {
+                    const double d =
+                      (b->vertex(j) - a->vertex(i) - shift).norm_square();
+                    if (d < best)
+                      {
+                        best   = d;
+                        j_best = j;
+                      }
+                  }
+                add_copy(a->vertex_index(i), b->vertex_index(j_best), shift);
+                add_copy(b->vertex_index(j_best), a->vertex_index(i), -shift);
+              }
+          }
+        for (unsigned int round = 1; round < dim; ++round)
+          for (unsigned int v = 0; v < copies.size(); ++v)
+            for (std::size_t k = 0; k < copies[v].size(); ++k)
+              {
+                const auto [w, s] = copies[v][k];
+                for (std::size_t l = 0; l < copies[w].size(); ++l)
+                  {
+                    const auto [u, t] = copies[w][l];
+                    add_copy(v, u, s + t);
+                  }
+              }
+      }
+    image_shifts.assign(1, Tensor<1, dim>());
+    const auto image_of = [this](const Tensor<1, dim> &shift) {
+      for (unsigned int i = 0; i < image_shifts.size(); ++i)
+        if ((image_shifts[i] - shift).norm() <=
+            1e-9 * std::max(1., shift.norm()))
+          return i;
+      image_shifts.push_back(shift);
+      AssertThrow(image_shifts.size() < 256, ExcInternalError());
+      return static_cast<unsigned int>(image_shifts.size() - 1);
+    };
+    // Each cell's patch: itself first, then the non-artificial cells
+    // sharing a vertex with it (where the corners may lie), and with
+    // periodic boundaries those sharing a periodic copy of a vertex, in
+    // their image next to the cell.
     const auto  sets = GridTools::vertex_to_cell_map(triangulation);
     cell_patches.assign(triangulation.n_active_cells(), {});
+    cell_patch_images.assign(periodic ? triangulation.n_active_cells() : 0,
+                             {});
     corner_slot_of_cell.assign(triangulation.n_active_cells(),
                                numbers::invalid_unsigned_int);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          auto &patch = cell_patches[cell->active_cell_index()];
-          patch.push_back(cell->active_cell_index());
+          const unsigned int index = cell->active_cell_index();
+          auto              &patch = cell_patches[index];
+          std::vector<unsigned char> images;
+          const auto add = [&](const unsigned int neighbour,
+                               const unsigned int image) {
+            for (unsigned int i = 0; i < patch.size(); ++i)
+              if (patch[i] == neighbour && (!periodic || images[i] == image))
+                return;
+            patch.push_back(neighbour);
+            if (periodic)
+              images.push_back(image);
+          };
+          add(index, 0);
           for (const unsigned int v : cell->vertex_indices())
-            for (const auto &neighbour : sets[cell->vertex_index(v)])
-              if (!neighbour->is_artificial() &&
-                  std::find(patch.begin(),
-                            patch.end(),
-                            neighbour->active_cell_index()) == patch.end())
-                patch.push_back(neighbour->active_cell_index());
+            {
+              for (const auto &neighbour : sets[cell->vertex_index(v)])
+                if (!neighbour->is_artificial())
+                  add(neighbour->active_cell_index(), 0);
+              if (periodic)
+                for (const auto &[w, shift] : copies[cell->vertex_index(v)])
+                  {
+                    // A cell at the copy w = v + shift lies next to this
+                    // one shifted back by the shift.
+                    const unsigned int image = image_of(-shift);
+                    for (const auto &neighbour : sets[w])
+                      if (!neighbour->is_artificial())
+                        add(neighbour->active_cell_index(), image);
+                  }
+            }
+          if (periodic)
+            cell_patch_images[index] = images;
         }
   }
 
@@ -230,6 +319,21 @@ namespace MPM
             std::array<const ParallelepipedMap *, 64> parallelepiped_of;
             AssertThrow(patch.size() <= 64, ExcInternalError());
             const unsigned char n_patch = patch.size();
+            // Periodic boundaries: each patch cell's image and its shift.
+            const unsigned char *image_of =
+              cell_patch_images.empty() ?
+                nullptr :
+                cell_patch_images[cell->active_cell_index()].data();
+            std::array<Tensor<1, dim>, 64> shift_of;
+            if (image_of != nullptr)
+              for (unsigned int i = 0; i < patch.size(); ++i)
+                shift_of[i] = image_shifts[image_of[i]];
+            // @p y in the frame of the patch's cell @p i (where its image
+            // lies, the cell itself).
+            const auto in_cell_frame = [&](const unsigned int i,
+                                           const Point<dim>  &y) {
+              return image_of == nullptr ? y : y - shift_of[i];
+            };
             for (unsigned int i = 0; i < patch.size(); ++i)
               {
                 vertices_of[i] = &grid.cell_vertices(patch[i]);
@@ -272,19 +376,22 @@ namespace MPM
                 const auto nearly_contains = [&](const unsigned int i,
                                                  Point<dim>        &y,
                                                  Point<dim>        &eta) {
-                  const auto &vertices = *vertices_of[i];
-                  if (!in_bounding_box<dim>(vertices, y, 0.05))
+                  const auto      &vertices = *vertices_of[i];
+                  const Point<dim> z        = in_cell_frame(i, y);
+                  if (!in_bounding_box<dim>(vertices, z, 0.05))
                     return false;
                   InverseMappingResult<dim> result;
                   if constexpr (dim == 2)
-                    result = map_of[i]->inverse(y);
+                    result = map_of[i]->inverse(z);
                   else
-                    result = inverse_map_newton<dim>(vertices, y);
+                    result = inverse_map_newton<dim>(vertices, z);
                   if (!result.success || !inside_unit_cell(result.xi, 0.02))
                     return false;
                   for (unsigned int d = 0; d < dim; ++d)
                     eta[d] = std::min(1., std::max(0., result.xi[d]));
-                  y                  = map_unit_to_real<dim>(vertices, eta);
+                  y = map_unit_to_real<dim>(vertices, eta);
+                  if (image_of != nullptr)
+                    y += shift_of[i];
                   parallelepiped = false;
                   return true;
                 };
@@ -308,7 +415,7 @@ namespace MPM
                           if (cell_contains<dim>(*vertices_of[i],
                                                  map_of[i],
                                                  parallelepiped_of[i],
-                                                 x[c],
+                                                 in_cell_frame(i, x[c]),
                                                  xi[c]))
                             {
                               corner_cell[c] = i;
@@ -407,7 +514,13 @@ namespace MPM
                     while (corner_cell[first] != corner_cell[c])
                       ++first;
                     corners[std::size_t(p) * n_corners + c] = {
-                      patch[corner_cell[c]], first, xi[c], alpha[c], beta[c]};
+                      patch[corner_cell[c]],
+                      first,
+                      image_of == nullptr ? (unsigned char)0 :
+                                            image_of[corner_cell[c]],
+                      xi[c],
+                      alpha[c],
+                      beta[c]};
                   }
               }
           }
@@ -475,8 +588,13 @@ namespace MPM
                   w.gradient.fill(Tensor<1, dim>());
                   entry_point[k] = p;
                   if (affine)
-                    entry_centre[k] =
-                      point_centre[p] - grid.cell_vertices(corner.cell)[0];
+                    {
+                      entry_centre[k] =
+                        point_centre[p] - grid.cell_vertices(corner.cell)[0];
+                      // The cell's image lies by its shift from the cell.
+                      if (corner.image != 0)
+                        entry_centre[k] -= image_shifts[corner.image];
+                    }
                 }
               const auto N = Q1ShapeFunctions<dim>::values_at(corner.xi);
               for (unsigned int i = 0; i < n_vertices; ++i)

@@ -122,6 +122,9 @@ namespace MPM
       /// The point's first corner in the same cell (this corner's, if it
       /// is the first): the corners of one entry.
       unsigned char  first_in_cell;
+      /// The periodic image of the cell the corner lies in (index into
+      /// image_shifts; 0: the cell itself).
+      unsigned char  image;
       Point<dim>     xi;
       double         alpha;
       Tensor<1, dim> beta;
@@ -145,6 +148,17 @@ namespace MPM
     /// (their active_cell_index(), by active_cell_index(); the cell itself
     /// first).
     std::vector<std::vector<unsigned int>> cell_patches;
+    /**
+     * Periodic boundaries only (else empty): for each cell of each patch,
+     * the periodic image in which it neighbours the patch's cell, as an
+     * index into image_shifts. A cell across a periodic boundary is a
+     * neighbour shifted by the period: a corner x beyond the boundary is
+     * located in it at x - shift, and the cell's nodes (the copies of the
+     * nodes near x, PeriodicNodeGroups) take its weights.
+     */
+    std::vector<std::vector<unsigned char>> cell_patch_images;
+    /// The shifts of the periodic images (the first: none).
+    std::vector<Tensor<1, dim>> image_shifts;
   };
 } // namespace MPM
 
