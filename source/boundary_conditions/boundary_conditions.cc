@@ -205,7 +205,8 @@ namespace MPM
   template <int dim>
   void
   BoundaryConditions<dim>::setup(const BackgroundGrid<dim> &grid,
-                                 const NodalVector         &layout)
+                                 const NodalVector         &layout,
+                                 const PeriodicNodeGroups  *periodic_nodes)
   {
     // The contact state is kept by location through a new setup (after
     // repartitioning, a node may now live on another rank).
@@ -213,7 +214,7 @@ namespace MPM
       Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
                                  contact_locations());
     const std::vector<NodeFrame<dim>> frames =
-      compute_node_frames(grid, layout, specs, gravity_magnitude);
+      compute_node_frames(grid, layout, specs, gravity_magnitude, periodic_nodes);
     make_wall_constraints(frames, grid.locally_relevant_dofs, normal_constraints);
     nodes = make_projections(frames, normal_constraints, layout);
     contact_state.assign(nodes.size(), ContactState::free);

@@ -41,6 +41,7 @@ namespace MPM
     void
     compute_wall_shares(const BackgroundGrid<dim>            &grid,
                         const std::vector<BoundarySpec<dim>> &specs,
+                        const PeriodicNodeGroups             *periodic_nodes,
                         std::vector<NodalVector>             &area,
                         NodalVector                          &volume)
     {
@@ -89,9 +90,13 @@ namespace MPM
           {
             a.compress(VectorOperation::add);
             a.update_ghost_values();
+            if (periodic_nodes != nullptr)
+              periodic_nodes->sum(a);
           }
       volume.compress(VectorOperation::add);
       volume.update_ghost_values();
+      if (periodic_nodes != nullptr)
+        periodic_nodes->sum(volume);
     }
   } // namespace
 
@@ -101,7 +106,8 @@ namespace MPM
   compute_node_frames(const BackgroundGrid<dim>            &grid,
                       const NodalVector                    &layout,
                       const std::vector<BoundarySpec<dim>> &specs,
-                      const double                          gravity)
+                      const double                          gravity,
+                      const PeriodicNodeGroups             *periodic_nodes)
   {
     std::vector<NodeFrame<dim>> frames;
     if (specs.empty())
@@ -157,6 +163,12 @@ namespace MPM
         normal_sum[s].update_ghost_values();
         touches[s].compress(VectorOperation::add);
         touches[s].update_ghost_values();
+        // A periodic node's copies see the faces of both sides.
+        if (periodic_nodes != nullptr)
+          {
+            periodic_nodes->sum(normal_sum[s]);
+            periodic_nodes->sum(touches[s]);
+          }
       }
 
     // The wall shares of the nodes of rate-dependent basal laws.
@@ -175,7 +187,7 @@ namespace MPM
       {
         cell_volume.reinit(layout);
         cell_volume = 0;
-        compute_wall_shares(grid, specs, wall_area, cell_volume);
+        compute_wall_shares(grid, specs, periodic_nodes, wall_area, cell_volume);
       }
     const auto geometry_of = [&](const std::vector<unsigned int> &walls,
                                  const unsigned int               local0) {
@@ -329,10 +341,12 @@ namespace MPM
   compute_node_frames(const BackgroundGrid<2> &,
                       const NodalVector &,
                       const std::vector<BoundarySpec<2>> &,
-                      const double);
+                      const double,
+                      const PeriodicNodeGroups *);
   template std::vector<NodeFrame<3>>
   compute_node_frames(const BackgroundGrid<3> &,
                       const NodalVector &,
                       const std::vector<BoundarySpec<3>> &,
-                      const double);
+                      const double,
+                      const PeriodicNodeGroups *);
 } // namespace MPM

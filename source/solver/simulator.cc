@@ -191,7 +191,7 @@ namespace MPM
       grid.periodic_boundaries.node_groups(grid.dof_handler,
                                            grid.locally_relevant_dofs),
       *partitioner);
-    boundary_conditions.setup(grid, nodal.mass);
+    boundary_conditions.setup(grid, nodal.mass, &periodic_nodes);
     point_relocation.initialize(grid);
     weights->setup_partition();
   }

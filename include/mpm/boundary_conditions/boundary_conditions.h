@@ -97,9 +97,13 @@ namespace MPM
      * Compute the node frames, the AffineConstraints and the per-node
      * projectors for the current mesh and DoF numbering; @p layout is a
      * ghosted vector whose local element numbering the nodes will use.
+     * With periodic boundaries, @p periodic_nodes are the copies of the
+     * nodes (their frames are made alike).
      */
     void
-    setup(const BackgroundGrid<dim> &grid, const NodalVector &layout);
+    setup(const BackgroundGrid<dim> &grid,
+          const NodalVector         &layout,
+          const PeriodicNodeGroups  *periodic_nodes = nullptr);
 
     /**
      * The gravity of the scene, whose magnitude basal laws may refer to

@@ -6,6 +6,7 @@
 
 #include <mpm/boundary_conditions/boundary_spec.h>
 #include <mpm/grid/background_grid.h>
+#include <mpm/grid/periodic_node_groups.h>
 #include <mpm/grid/nodal_vector.h>
 
 #include <array>
@@ -58,13 +59,18 @@ namespace MPM
    *
    * Where a basal law is rate-dependent, its nodes' WallNodeGeometry
    * (A_i / V_i and |g| = @p gravity) is computed too.
+   *
+   * With periodic boundaries (@p periodic_nodes), the face sums (normals,
+   * wall areas, volumes) of a node's periodic copies are added together,
+   * so that the copies get the same frame.
    */
   template <int dim>
   std::vector<NodeFrame<dim>>
   compute_node_frames(const BackgroundGrid<dim>             &grid,
                       const NodalVector                     &layout,
                       const std::vector<BoundarySpec<dim>>  &specs,
-                      const double                           gravity);
+                      const double                           gravity,
+                      const PeriodicNodeGroups              *periodic_nodes);
 } // namespace MPM
 
 #endif
