@@ -66,7 +66,10 @@ namespace MPM
         "the points of its cell before the stress and volume update, the "
         "deviatoric part kept (an F-bar-type anti-locking for plastically "
         "incompressible flow with several points per cell; "
-        "doc/convergence.md). 'none': each point's own.");
+        "doc/convergence.md). With a dilating material (dilation angle > "
+        "0) and FLIP it was measured to create energy once the material "
+        "flows (doc/slope_stability.md): use 'none' there. 'none': each "
+        "point's own.");
       prm.declare_entry("Gravity",
                         dim == 2 ? "0, -9.81" : "0, 0, -9.81",
                         Patterns::List(Patterns::Double(), dim, dim),
