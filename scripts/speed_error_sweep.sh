@@ -65,27 +65,25 @@ vibrating_bar() {
   # With the linear weights, as when doc/performance.md's figures were
   # made (the prm ships CPDI since; doc/convergence.md compares the two).
   local prm="$MPM_ROOT/prm/vibrating_bar.prm" e="max |v_cm error|" m="max v_cm error / amplitude"
-  local n h rows top
-  for n in 13 26 52 104 208; do
-    h=$(awk -v n="$n" 'BEGIN { print 26 / n }')
-    rows=$(awk -v h="$h" 'BEGIN { r = int(1 / h + 0.5); print (r < 1 ? 1 : r) }')
-    top=$(awk -v h="$h" -v r="$rows" 'BEGIN { print h * r }')
-    run vibrating_bar "cell size (m)" "$h" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear" \
-      --set "Mesh/Generator arguments={$n, $rows} : 0, 0 : 26, $top : true"
-  done
+  # bar_refinement PARAMETER WEIGHTS: the bar on 13 to 208 cells along it.
+  bar_refinement() {
+    local n h rows top
+    for n in 13 26 52 104 208; do
+      h=$(awk -v n="$n" 'BEGIN { print 26 / n }')
+      rows=$(awk -v h="$h" 'BEGIN { r = int(1 / h + 0.5); print (r < 1 ? 1 : r) }')
+      top=$(awk -v h="$h" -v r="$rows" 'BEGIN { print h * r }')
+      run vibrating_bar "$1" "$h" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=$2" \
+        --set "Mesh/Generator arguments={$n, $rows} : 0, 0 : 26, $top : true"
+    done
+  }
+  bar_refinement "cell size (m)" linear
   for v in 1 2 3 4; do run vibrating_bar "points per cell" "$v" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear" --set "Material points/bar/Points per cell=$v"; done
   for v in 0.1 0.2 0.4 0.8; do run vibrating_bar "CFL number" "$v" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear" --set "Time stepping/CFL number=$v"; done
   for v in USF USL MUSL; do run vibrating_bar "update scheme" "$v" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear" --set "Time stepping/Update scheme=$v"; done
   for v in 0 0.5 0.9 1; do run vibrating_bar "FLIP fraction" "$v" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear" --set "Transfer/FLIP fraction=$v"; done
   # The shipped weights: CPDI converges under refinement where the linear
   # weights above go unstable (doc/convergence.md).
-  for n in 13 26 52 104 208; do
-    h=$(awk -v n="$n" 'BEGIN { print 26 / n }')
-    rows=$(awk -v h="$h" 'BEGIN { r = int(1 / h + 0.5); print (r < 1 ? 1 : r) }')
-    top=$(awk -v h="$h" -v r="$rows" 'BEGIN { print h * r }')
-    run vibrating_bar "cell size CPDI (m)" "$h" "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=cpdi" \
-      --set "Mesh/Generator arguments={$n, $rows} : 0, 0 : 26, $top : true"
-  done
+  bar_refinement "cell size CPDI (m)" cpdi
   transfer_schemes vibrating_bar "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear"
   MPM_THREADS=2 run vibrating_bar "threads" 2 "$prm" "$e" "$m" --set "Transfer/Particle-grid weights=linear"
 }

@@ -23,7 +23,7 @@ namespace MPM
      * of total energy (kinetic + strain + gravitational).
      */
     template <int dim>
-    class Conservation : public Postprocessor<dim>
+    class Conservation : public PostprocessorWithState<dim, Conservation<dim>>
     {
     public:
       static void
@@ -104,18 +104,6 @@ namespace MPM
                << "\nmax energy change: " << max_energy_change
                << "\nmax angular momentum error: " << max_angular_momentum_error
                << '\n';
-      }
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
       }
 
       /**

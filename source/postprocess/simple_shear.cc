@@ -34,7 +34,7 @@ namespace MPM
      * the boundary conditions and moving points.
      */
     template <int dim>
-    class SimpleShear : public Postprocessor<dim>
+    class SimpleShear : public PostprocessorWithState<dim, SimpleShear<dim>>
     {
     public:
       static void
@@ -139,18 +139,6 @@ namespace MPM
                << ", largest |point velocity - gamma_dot (y - y_b)| / "
                   "(gamma_dot H): "
                << worst[1] << '\n';
-      }
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
       }
 
       /// The state accumulated over the run (checkpoints).

@@ -34,7 +34,7 @@ namespace MPM
      * changes one parameter.
      */
     template <int dim>
-    class SlidingBlock : public Postprocessor<dim>
+    class SlidingBlock : public PostprocessorWithState<dim, SlidingBlock<dim>>
     {
     public:
       static void
@@ -194,18 +194,6 @@ namespace MPM
                    << (sticks ? slope : (slope - acceleration) / acceleration)
                    << "\nfitted v0 (m/s): " << offset << '\n';
           }
-      }
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
       }
 
       /**

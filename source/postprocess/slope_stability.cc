@@ -52,7 +52,7 @@ namespace MPM
      * width).
      */
     template <int dim>
-    class SlopeStability : public Postprocessor<dim>
+    class SlopeStability : public PostprocessorWithState<dim, SlopeStability<dim>>
     {
     public:
       static void
@@ -279,18 +279,6 @@ namespace MPM
           if (surface[b] != -std::numeric_limits<double>::max())
             report << std::setw(10) << start + (b + 0.5) * bin_width
                    << std::setw(14) << surface[b] << '\n';
-      }
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
       }
 
       template <class Archive>

@@ -26,7 +26,7 @@ namespace MPM
      * of the first material, which must have nu = 0.
      */
     template <int dim>
-    class VibratingBar : public Postprocessor<dim>
+    class VibratingBar : public PostprocessorWithState<dim, VibratingBar<dim>>
     {
     public:
       static void
@@ -97,18 +97,6 @@ namespace MPM
           }
         else
           report << "period: fewer than two zero crossings of v_cm\n";
-      }
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
       }
 
       /**

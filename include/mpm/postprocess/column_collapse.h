@@ -27,7 +27,7 @@ namespace MPM
      * fell below 'Stop speed' for good.
      */
     template <int dim>
-    class ColumnCollapse : public Postprocessor<dim>
+    class ColumnCollapse : public PostprocessorWithState<dim, ColumnCollapse<dim>>
     {
     public:
       static void
@@ -45,18 +45,6 @@ namespace MPM
       void
       write_report(const Simulator<dim> &simulator,
                    std::ostream         &report) override;
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
-      }
 
       /**
        * The state accumulated over the run (checkpoints).

@@ -23,7 +23,7 @@ namespace MPM
      * oscillates with 2 J while its potential energy is 226 J.
      */
     template <int dim>
-    class EnergyBalance : public Postprocessor<dim>
+    class EnergyBalance : public PostprocessorWithState<dim, EnergyBalance<dim>>
     {
     public:
       static void
@@ -43,18 +43,6 @@ namespace MPM
       void
       write_report(const Simulator<dim> &simulator,
                    std::ostream         &report) override;
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
-      }
 
       /**
        * The state accumulated over the run (checkpoints).

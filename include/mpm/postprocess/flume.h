@@ -34,7 +34,7 @@ namespace MPM
      * largest h of the bin's points) and where the deposit is thickest.
      */
     template <int dim>
-    class Flume : public Postprocessor<dim>
+    class Flume : public PostprocessorWithState<dim, Flume<dim>>
     {
     public:
       static void
@@ -65,18 +65,6 @@ namespace MPM
        */
       Point<2>
       bed_point(const double s) const;
-
-      void
-      save_state(std::ostream &out) const override
-      {
-        save_object(out, *this);
-      }
-
-      void
-      load_state(std::istream &in) override
-      {
-        load_object(in, *this);
-      }
 
       /**
        * The state accumulated over the run (checkpoints).

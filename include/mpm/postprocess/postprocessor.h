@@ -73,7 +73,7 @@ namespace MPM
      * report is the report of an uninterrupted run. There is no default:
      * a postprocessor that forgot its state would report only what it saw
      * after the restart; one without state says so with an empty body.
-     * Use save_object()/load_object() with a serialize() member.
+     * PostprocessorWithState implements both from a serialize() member.
      */
     virtual void
     save_state(std::ostream &out) const = 0;
@@ -104,6 +104,30 @@ namespace MPM
     boost::archive::binary_iarchive archive(in);
     archive >> object;
   }
+
+
+  /**
+   * A postprocessor whose state is its members named in its serialize()
+   * member (boost): save_state() and load_state() write and read them
+   * (save_object(), load_object()). Derive as
+   * `class Name : public PostprocessorWithState<dim, Name<dim>>`.
+   */
+  template <int dim, typename Derived>
+  class PostprocessorWithState : public Postprocessor<dim>
+  {
+  public:
+    void
+    save_state(std::ostream &out) const override
+    {
+      save_object(out, static_cast<const Derived &>(*this));
+    }
+
+    void
+    load_state(std::istream &in) override
+    {
+      load_object(in, static_cast<Derived &>(*this));
+    }
+  };
 
 
   /**
