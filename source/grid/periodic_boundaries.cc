@@ -149,8 +149,8 @@ namespace MPM
           }
         check_input(std::abs(low[0] - low[1]) > 1e-10 * extent,
                     name + ": the two boundaries lie in the same plane.");
-        pair.scene_lower = std::min(low[0], low[1]);
-        pair.scene_upper = std::max(low[0], low[1]);
+        pair.lower = std::min(low[0], low[1]);
+        pair.upper = std::max(low[0], low[1]);
 
         std::vector<GridTools::PeriodicFacePair<CellIterator>> matched;
         try
@@ -189,12 +189,10 @@ namespace MPM
       {
         Tensor<1, dim> e;
         e[pair.direction] = 1;
-        // A plane s = c in the scene frame is n . x = c in the mesh frame,
-        // n = R e.
+        // A plane x_d = c in the scene frame is n . x = c in the mesh
+        // frame, n = R e_d: lower and upper hold for both.
         pair.normal = rotation * e;
-        pair.lower  = pair.scene_lower;
-        pair.upper  = pair.scene_upper;
-        pair.period = (pair.scene_upper - pair.scene_lower) * pair.normal;
+        pair.period = (pair.upper - pair.lower) * pair.normal;
       }
   }
 

@@ -117,12 +117,13 @@ namespace MPM
       types::boundary_id second = 0;
       /// The coordinate direction (parameter file's frame).
       unsigned int       direction = 0;
-      /// The planes' coordinates along it, lower < upper (scene frame).
-      double             scene_lower = 0, scene_upper = 0;
-      /// Mesh frame: the unit normal of the planes, their positions
-      /// along it, and the period (upper - lower) normal.
-      Tensor<1, dim>     normal;
+      /// The planes' coordinates along the direction, lower < upper:
+      /// in the scene frame x_d, in the mesh frame normal . x (the same
+      /// number, normal = R e_d), so one pair serves both.
       double             lower = 0, upper = 0;
+      /// Mesh frame: the unit normal of the planes and the period
+      /// (upper - lower) normal.
+      Tensor<1, dim>     normal;
       Tensor<1, dim>     period;
     };
     std::vector<Pair> pairs;
