@@ -269,6 +269,7 @@ namespace MPM
     const bool affine = this->affine();
     if (affine)
       point_centre.resize(n_points);
+    corner_hints.resize(particle_handler.get_property_pool().n_slots());
 
     // The cells holding points, with their first points.
     this->point_cell_begin.clear();
@@ -348,6 +349,8 @@ namespace MPM
               {
                 double *props       = point->get_properties().data();
                 point_properties[p] = props;
+                CornerHint &hint    = corner_hints[point->get_local_index()];
+                const bool  hinted  = hint.cell == cell->active_cell_index();
                 point_cell_map[p] =
                   dim == 2 ? &grid.bilinear_map(cell) : nullptr;
                 // A point without a domain yet (new, or read from a file) gets
@@ -404,6 +407,24 @@ namespace MPM
                       x[c] =
                         x_p + s * D[c];
                       bool found = false;
+                      // The last step's cell of the corner, if it holds the
+                      // corner strictly inside (CornerHint).
+                      if (hinted)
+                        {
+                          const unsigned int i = hint.patch_position[c];
+                          if (i < n_patch &&
+                              cell_contains<dim>(*vertices_of[i],
+                                                 map_of[i],
+                                                 parallelepiped_of[i],
+                                                 in_cell_frame(i, x[c]),
+                                                 xi[c]) &&
+                              inside_unit_cell(xi[c], -corner_hint_margin))
+                            {
+                              corner_cell[c] = i;
+                              last_found[c]  = i;
+                              continue;
+                            }
+                        }
                       for (unsigned int j = 0; j <= n_patch; ++j)
                         {
                           // The previous point's cell of this corner first.
@@ -483,6 +504,9 @@ namespace MPM
                           }
                       }
                   }
+                hint.cell = cell->active_cell_index();
+                for (unsigned int c = 0; c < n_corners; ++c)
+                  hint.patch_position[c] = corner_cell[c];
                 std::array<double, n_corners>         alpha;
                 std::array<Tensor<1, dim>, n_corners> beta;
                 const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);

@@ -159,6 +159,36 @@ namespace MPM
     std::vector<std::vector<unsigned char>> cell_patch_images;
     /// The shifts of the periodic images (the first: none).
     std::vector<Tensor<1, dim>> image_shifts;
+
+    /**
+     * Where each point's corners lay in the last step: its cell then (the
+     * active_cell_index()) and each corner's cell as a position in that
+     * cell's patch. A point's corners move by a fraction of a cell per step,
+     * so the last step's cell is tried first; it is accepted without the
+     * ordered search only if it holds the corner strictly inside (farther
+     * than corner_hint_margin from its faces in reference coordinates),
+     * where no other cell of the patch holds it and the ordered search
+     * would find the same cell: a hint changes the cost, never the result.
+     */
+    struct CornerHint
+    {
+      unsigned int cell = numbers::invalid_unsigned_int;
+      std::array<unsigned char, PointDomains<dim>::n_corners> patch_position;
+    };
+    /**
+     * The hints by the points' local index in the ParticleHandler
+     * (Particles::ParticleAccessor::get_local_index(), sized by the
+     * property pool's slots). A point re-inserted into another slot (when
+     * it changes cell or the storage is put back in cell order) finds
+     * another point's hint or none: it pays for the ordered search once.
+     * Not checkpointed: the first step after a restart searches.
+     */
+    std::vector<CornerHint> corner_hints;
+    /// Margin of a hint's acceptance (see CornerHint), in reference
+    /// coordinates: far above the round-off of the inverse maps and their
+    /// tolerance (reference_cell_tolerance) for cells of a patch whose
+    /// sizes differ by up to a factor 1e4.
+    static constexpr double corner_hint_margin = 1e-8;
   };
 } // namespace MPM
 
