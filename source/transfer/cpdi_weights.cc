@@ -205,6 +205,8 @@ namespace MPM
                              {});
     corner_slot_of_cell.assign(triangulation.n_active_cells(),
                                numbers::invalid_unsigned_int);
+    // The hints name cells of these patches by position and index.
+    corner_hints.clear();
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -312,36 +314,35 @@ namespace MPM
             unsigned int        p     = this->point_cell_begin[pc];
             const unsigned int  p_end = this->point_cell_begin[pc + 1];
             const auto         &patch = cell_patches[cell->active_cell_index()];
-            // The patch's geometry, looked up once for the cell's points, and
-            // where each corner was found for the previous point (the points
-            // of a cell are alike: tried first).
-            std::array<const std::array<Point<dim>, n_corners> *, 64> vertices_of;
-            std::array<const BilinearCellMap *, 64>                   map_of;
-            std::array<const ParallelepipedMap *, 64> parallelepiped_of;
-            AssertThrow(patch.size() <= 64, ExcInternalError());
-            const unsigned char n_patch = patch.size();
-            // Periodic boundaries: each patch cell's image and its shift.
+            // The patch's geometry (looked up where a corner is tested: with
+            // the hints most points test only the cells of the last step),
+            // and where each corner was found for the previous point (the
+            // points of a cell are alike: tried first).
+            // (The patch's size: read where a corner is searched.)
+            const auto vertices_of = [&](const unsigned int i) {
+              return &grid.cell_vertices(patch[i]);
+            };
+            const auto map_of = [&](const unsigned int i) {
+              return dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
+            };
+            const auto parallelepiped_of = [&](const unsigned int i) {
+              return dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
+            };
+            // Periodic boundaries: each patch cell's image.
             const unsigned char *image_of =
               cell_patch_images.empty() ?
                 nullptr :
                 cell_patch_images[cell->active_cell_index()].data();
-            std::array<Tensor<1, dim>, 64> shift_of;
-            if (image_of != nullptr)
-              for (unsigned int i = 0; i < patch.size(); ++i)
-                shift_of[i] = image_shifts[image_of[i]];
+            // The shift of the patch's cell @p i (its image's from the cell).
+            const auto shift_of = [&](const unsigned int i) {
+              return image_shifts[image_of[i]];
+            };
             // @p y in the frame of the patch's cell @p i (where its image
             // lies, the cell itself).
             const auto in_cell_frame = [&](const unsigned int i,
                                            const Point<dim>  &y) {
-              return image_of == nullptr ? y : y - shift_of[i];
+              return image_of == nullptr ? y : y - shift_of(i);
             };
-            for (unsigned int i = 0; i < patch.size(); ++i)
-              {
-                vertices_of[i] = &grid.cell_vertices(patch[i]);
-                map_of[i] = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
-                parallelepiped_of[i] =
-                  dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
-              }
             std::array<unsigned int, n_corners> last_found;
             last_found.fill(0);
             auto point = this->point_cell_first_point[pc];
@@ -369,6 +370,17 @@ namespace MPM
                 std::array<Point<dim>, n_corners> x;
                 // Where each corner lies: its cell's position in the patch.
                 std::array<unsigned char, n_corners> corner_cell;
+                // Its active_cell_index() and periodic image.
+                std::array<unsigned int, n_corners>  corner_index;
+                std::array<unsigned char, n_corners> corner_image;
+                // Where the ordered search found corner @p c: the patch's
+                // cell @p i.
+                const auto found_in = [&](const unsigned int c,
+                                          const unsigned int i) {
+                  corner_cell[c]  = i;
+                  corner_index[c] = patch[i];
+                  corner_image[c] = image_of == nullptr ? 0 : image_of[i];
+                };
                 std::array<Point<dim>, n_corners>    xi;
                 // Whether the corners are still x_p + s D_c (none moved onto a
                 // cell).
@@ -379,13 +391,13 @@ namespace MPM
                 const auto nearly_contains = [&](const unsigned int i,
                                                  Point<dim>        &y,
                                                  Point<dim>        &eta) {
-                  const auto      &vertices = *vertices_of[i];
+                  const auto      &vertices = *vertices_of(i);
                   const Point<dim> z        = in_cell_frame(i, y);
                   if (!in_bounding_box<dim>(vertices, z, 0.05))
                     return false;
                   InverseMappingResult<dim> result;
                   if constexpr (dim == 2)
-                    result = map_of[i]->inverse(z);
+                    result = map_of(i)->inverse(z);
                   else
                     result = inverse_map_newton<dim>(vertices, z);
                   if (!result.success || !inside_unit_cell(result.xi, 0.02))
@@ -394,7 +406,7 @@ namespace MPM
                     eta[d] = std::min(1., std::max(0., result.xi[d]));
                   y = map_unit_to_real<dim>(vertices, eta);
                   if (image_of != nullptr)
-                    y += shift_of[i];
+                    y += shift_of(i);
                   parallelepiped = false;
                   return true;
                 };
@@ -403,28 +415,57 @@ namespace MPM
                 const auto locate_corners = [&](const double s) {
                   parallelepiped = true;
                   for (unsigned int c = 0; c < n_corners; ++c)
+                    x[c] = x_p + s * D[c];
+                  // The last step's cells of the corners, where they hold
+                  // them strictly inside (CornerHint). In 2D the closed
+                  // forms of all corners side by side.
+                  std::array<bool, n_corners> hit{};
+                  if (hinted)
                     {
-                      x[c] =
-                        x_p + s * D[c];
-                      bool found = false;
-                      // The last step's cell of the corner, if it holds the
-                      // corner strictly inside (CornerHint).
-                      if (hinted)
+                      // The hinted cells by their index (not through the
+                      // patch, which most points then never read).
+                      const auto hinted_frame = [&](const unsigned int c) {
+                        return hint.image[c] == 0 ?
+                                 x[c] :
+                                 x[c] - image_shifts[hint.image[c]];
+                      };
+                      if constexpr (dim == 2)
                         {
-                          const unsigned int i = hint.patch_position[c];
-                          if (i < n_patch &&
-                              cell_contains<dim>(*vertices_of[i],
-                                                 map_of[i],
-                                                 parallelepiped_of[i],
-                                                 in_cell_frame(i, x[c]),
-                                                 xi[c]) &&
-                              inside_unit_cell(xi[c], -corner_hint_margin))
+                          std::array<const BilinearCellMap *, n_corners> maps;
+                          std::array<Point<dim>, n_corners>              z;
+                          for (unsigned int c = 0; c < n_corners; ++c)
                             {
-                              corner_cell[c] = i;
-                              last_found[c]  = i;
-                              continue;
+                              maps[c] = &grid.bilinear_map(hint.cell_index[c]);
+                              z[c]    = hinted_frame(c);
                             }
+                          BilinearCellMap::contains(maps, z, xi, hit);
                         }
+                      else
+                        for (unsigned int c = 0; c < n_corners; ++c)
+                          hit[c] = cell_contains<dim>(
+                            grid.cell_vertices(hint.cell_index[c]),
+                            nullptr,
+                            &grid.parallelepiped_map(hint.cell_index[c]),
+                            hinted_frame(c),
+                            xi[c]);
+                      for (unsigned int c = 0; c < n_corners; ++c)
+                        if (hit[c] &&
+                            inside_unit_cell(xi[c], -corner_hint_margin))
+                          {
+                            corner_cell[c]  = hint.patch_position[c];
+                            corner_index[c] = hint.cell_index[c];
+                            corner_image[c] = hint.image[c];
+                            last_found[c]   = corner_cell[c];
+                          }
+                        else
+                          hit[c] = false;
+                    }
+                  for (unsigned int c = 0; c < n_corners; ++c)
+                    {
+                      if (hit[c])
+                        continue;
+                      bool found = false;
+                      const unsigned int n_patch = patch.size();
                       for (unsigned int j = 0; j <= n_patch; ++j)
                         {
                           // The previous point's cell of this corner first.
@@ -433,15 +474,15 @@ namespace MPM
                                      (j - 1 == last_found[c] ? 0 : j - 1);
                           if (j > 0 && j - 1 == 0 && last_found[c] == 0)
                             continue;
-                          if (cell_contains<dim>(*vertices_of[i],
-                                                 map_of[i],
-                                                 parallelepiped_of[i],
+                          if (cell_contains<dim>(*vertices_of(i),
+                                                 map_of(i),
+                                                 parallelepiped_of(i),
                                                  in_cell_frame(i, x[c]),
                                                  xi[c]))
                             {
-                              corner_cell[c] = i;
-                              last_found[c]  = i;
-                              found          = true;
+                              found_in(c, i);
+                              last_found[c] = i;
+                              found         = true;
                               break;
                             }
                         }
@@ -452,7 +493,7 @@ namespace MPM
                       for (unsigned int i = 0; !found && i < n_patch; ++i)
                         if (nearly_contains(i, x[c], xi[c]))
                           {
-                            corner_cell[c] = i;
+                            found_in(c, i);
                             found          = true;
                           }
                       if (!found)
@@ -494,7 +535,7 @@ namespace MPM
                         for (unsigned int c = 0; c < n_corners; ++c)
                           {
                             x[c] = x_p + scale * D[c];
-                            corner_cell[c] = 0;
+                            found_in(c, 0);
                             if constexpr (dim == 2)
                               xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
                             else
@@ -506,7 +547,11 @@ namespace MPM
                   }
                 hint.cell = cell->active_cell_index();
                 for (unsigned int c = 0; c < n_corners; ++c)
-                  hint.patch_position[c] = corner_cell[c];
+                  {
+                    hint.patch_position[c] = corner_cell[c];
+                    hint.cell_index[c]     = corner_index[c];
+                    hint.image[c]          = corner_image[c];
+                  }
                 std::array<double, n_corners>         alpha;
                 std::array<Tensor<1, dim>, n_corners> beta;
                 const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
@@ -538,10 +583,9 @@ namespace MPM
                     while (corner_cell[first] != corner_cell[c])
                       ++first;
                     corners[std::size_t(p) * n_corners + c] = {
-                      patch[corner_cell[c]],
+                      corner_index[c],
                       first,
-                      image_of == nullptr ? (unsigned char)0 :
-                                            image_of[corner_cell[c]],
+                      corner_image[c],
                       xi[c],
                       alpha[c],
                       beta[c]};

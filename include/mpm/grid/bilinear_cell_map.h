@@ -133,6 +133,59 @@ namespace MPM
       return result.success && inside_unit_cell(xi);
     }
 
+    /**
+     * contains() for @p n points, each with the map of its own cell: the
+     * same arithmetic and the same answers (@p inside, @p xi), but the
+     * common case of the closed form is computed for all @p n points
+     * before any of them is decided, so that their square roots and
+     * divisions (a chain of about 50 cycles each) run side by side
+     * instead of one after the other. The uncommon cases (a parallelogram,
+     * a root outside the unit square, a polish) go through contains().
+     * For the corners of a CPDI domain, whose cells are known from the
+     * last step.
+     */
+    template <std::size_t n>
+    static void
+    contains(const std::array<const BilinearCellMap *, n> &maps,
+             const std::array<Point<2>, n>                &x,
+             std::array<Point<2>, n>                      &xi,
+             std::array<bool, n>                          &inside)
+    {
+      std::array<double, n>       B, C, sqrt_discriminant, q;
+      std::array<bool, n>         common;
+      std::array<Tensor<1, 2>, n> r;
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          const BilinearCellMap &m = *maps[k];
+          r[k]                     = x[k] - m.origin;
+          B[k]                     = m.B_of_cell - cross(r[k], m.d);
+          C[k]                     = cross(m.u, r[k]);
+          const double discriminant = B[k] * B[k] - 4. * m.A * C[k];
+          common[k] = !m.affine && discriminant >= 0;
+          sqrt_discriminant[k] = std::sqrt(common[k] ? discriminant : 0.);
+        }
+      for (std::size_t k = 0; k < n; ++k)
+        {
+          const BilinearCellMap &m = *maps[k];
+          q[k] = -0.5 * (B[k] + std::copysign(sqrt_discriminant[k], B[k]));
+          common[k] = common[k] && q[k] != 0;
+          const double       t = C[k] / (common[k] ? q[k] : 1.);
+          const Tensor<1, 2> e = m.u * q[k] + m.d * C[k];
+          const Tensor<1, 2> rhs    = r[k] * q[k] - m.w * C[k];
+          const double       e_norm = e * e;
+          common[k] = common[k] && std::isfinite(t) && e_norm > 0;
+          const double s = (rhs * e) / (common[k] ? e_norm : 1.);
+          xi[k] = m.solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
+        }
+      for (std::size_t k = 0; k < n; ++k)
+        if (common[k] && xi[k][0] >= 0 && xi[k][0] <= 1 && xi[k][1] >= 0 &&
+            xi[k][1] <= 1 &&
+            !maps[k]->needs_polish(sqrt_discriminant[k], B[k]))
+          inside[k] = true;
+        else
+          inside[k] = maps[k]->contains(x[k], xi[k]);
+    }
+
     /// Whether the cell is a parallelogram (its map affine, its inverse
     /// Cramer's rule).
     bool

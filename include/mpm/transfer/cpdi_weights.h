@@ -173,6 +173,12 @@ namespace MPM
     struct CornerHint
     {
       unsigned int cell = numbers::invalid_unsigned_int;
+      /// Each corner's cell: its active_cell_index() and periodic image
+      /// (what the hit needs, without reading the patch), and its
+      /// position in the patch (where the ordered search of the cell's
+      /// next point starts).
+      std::array<unsigned int, PointDomains<dim>::n_corners>  cell_index;
+      std::array<unsigned char, PointDomains<dim>::n_corners> image;
       std::array<unsigned char, PointDomains<dim>::n_corners> patch_position;
     };
     /**
@@ -181,7 +187,8 @@ namespace MPM
      * property pool's slots). A point re-inserted into another slot (when
      * it changes cell or the storage is put back in cell order) finds
      * another point's hint or none: it pays for the ordered search once.
-     * Not checkpointed: the first step after a restart searches.
+     * Cleared by setup_partition() (a hint is valid for its cell's patch);
+     * not checkpointed: the first step after a restart searches.
      */
     std::vector<CornerHint> corner_hints;
     /// Margin of a hint's acceptance (see CornerHint), in reference
