@@ -3,12 +3,14 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <mpm/grid/point_location.h>
+#include <mpm/grid/trilinear_cell_map.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <utility>
 #include <array>
 
@@ -107,21 +109,35 @@ namespace MPM
         const auto &vertices = grid->cell_vertices(cell);
         // A parallelepiped (3D) is inverted by one product instead of
         // Newton's iteration (not with 'Inverse mapping = deal.II').
+        // Any other hexahedron by Newton's iteration from each point's
+        // last reference coordinates (TrilinearCellMap).
         const ParallelepipedMap *affine_map = nullptr;
+        std::optional<TrilinearCellMap> trilinear_map;
         if constexpr (dim == 3)
-          if (inverse_type == InverseMappingType::newton &&
-              grid->parallelepiped_map(cell->active_cell_index()).is_affine())
-            affine_map = &grid->parallelepiped_map(cell->active_cell_index());
+          if (inverse_type == InverseMappingType::newton)
+            {
+              if (grid->parallelepiped_map(cell->active_cell_index())
+                    .is_affine())
+                affine_map =
+                  &grid->parallelepiped_map(cell->active_cell_index());
+              else
+                trilinear_map.emplace(vertices);
+            }
         for (auto point = points.begin(); point != points.end(); ++point)
           {
             const Point<dim> x = point->get_location();
             InverseMappingResult<dim> result;
             if constexpr (dim == 3)
-              if (affine_map != nullptr)
-                {
-                  result.xi      = affine_map->inverse(x);
-                  result.success = true;
-                }
+              {
+                if (affine_map != nullptr)
+                  {
+                    result.xi      = affine_map->inverse(x);
+                    result.success = true;
+                  }
+                else if (trilinear_map)
+                  result = trilinear_map->inverse(
+                    x, point->get_reference_location());
+              }
             if (!result.success)
               result =
                 by_vertices ?

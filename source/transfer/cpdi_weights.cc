@@ -8,6 +8,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/trilinear_cell_map.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/parallel/thread_chunks.h>
 #include <mpm/base/input_error.h>
@@ -272,6 +273,8 @@ namespace MPM
     if (affine)
       point_centre.resize(n_points);
     corner_hints.resize(particle_handler.get_property_pool().n_slots());
+    if (dim == 3)
+      corner_hint_xi.resize(corner_hints.size());
 
     // The cells holding points, with their first points.
     this->point_cell_begin.clear();
@@ -350,7 +353,8 @@ namespace MPM
               {
                 double *props       = point->get_properties().data();
                 point_properties[p] = props;
-                CornerHint &hint    = corner_hints[point->get_local_index()];
+                const unsigned int hint_index = point->get_local_index();
+                CornerHint &hint    = corner_hints[hint_index];
                 const bool  hinted  = hint.cell == cell->active_cell_index();
                 point_cell_map[p] =
                   dim == 2 ? &grid.bilinear_map(cell) : nullptr;
@@ -442,12 +446,28 @@ namespace MPM
                         }
                       else
                         for (unsigned int c = 0; c < n_corners; ++c)
-                          hit[c] = cell_contains<dim>(
-                            grid.cell_vertices(hint.cell_index[c]),
-                            nullptr,
-                            &grid.parallelepiped_map(hint.cell_index[c]),
-                            hinted_frame(c),
-                            xi[c]);
+                          {
+                            // A hexahedron that is not a parallelepiped:
+                            // Newton from the corner's last reference
+                            // coordinates (TrilinearCellMap).
+                            const unsigned int k = hint.cell_index[c];
+                            if (grid.parallelepiped_map(k).is_affine())
+                              hit[c] = cell_contains<dim>(
+                                grid.cell_vertices(k),
+                                nullptr,
+                                &grid.parallelepiped_map(k),
+                                hinted_frame(c),
+                                xi[c]);
+                            else
+                              {
+                                const auto result =
+                                  TrilinearCellMap(grid.cell_vertices(k))
+                                    .inverse(hinted_frame(c),
+                                             corner_hint_xi[hint_index][c]);
+                                hit[c] = result.success;
+                                xi[c]  = result.xi;
+                              }
+                          }
                       for (unsigned int c = 0; c < n_corners; ++c)
                         if (hit[c] &&
                             inside_unit_cell(xi[c], -corner_hint_margin))
@@ -552,6 +572,8 @@ namespace MPM
                     hint.cell_index[c]     = corner_index[c];
                     hint.image[c]          = corner_image[c];
                   }
+                if constexpr (dim == 3)
+                  corner_hint_xi[hint_index] = xi;
                 std::array<double, n_corners>         alpha;
                 std::array<Tensor<1, dim>, n_corners> beta;
                 const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);

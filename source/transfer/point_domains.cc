@@ -144,52 +144,81 @@ namespace MPM
           }
         return true;
       }
-    alpha.fill(0.);
-    beta.fill(Tensor<1, dim>());
-    const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)};
-    double       volume   = 0;
-    for (unsigned int q = 0; q < n_corners; ++q)
+    else
       {
-        // Quadrature point q: coordinate d is gauss[bit d of q]; weight
-        // 2^-dim, dropped (it cancels in the ratios).
-        Point<dim> xi;
-        for (unsigned int d = 0; d < dim; ++d)
-          xi[d] = gauss[(q >> d) & 1];
-        std::array<double, n_corners>         M;
-        std::array<Tensor<1, dim>, n_corners> dM;
-        Tensor<2, dim>                        J;
-        for (unsigned int c = 0; c < n_corners; ++c)
+        // 2 x 2 x 2-point Gauss quadrature on the hexahedral domain, exact
+        // for a trilinear domain: det J is of degree 2 in each coordinate,
+        // M_c det J and cof(J) grad M_c of degree 3. det J J^-T is the
+        // cofactor matrix, whose columns are cross products of the
+        // Jacobian's: no division per quadrature point. The shape
+        // functions M_c and their reference gradients at the quadrature
+        // points are the same for every domain: tabulated once.
+        struct Table
+        {
+          double         M[8][8];
+          Tensor<1, 3>   dM[8][8];
+        };
+        static const Table table = [] {
+          Table        t;
+          const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.),
+                                   0.5 + 0.5 / std::sqrt(3.)};
+          for (unsigned int q = 0; q < 8; ++q)
+            {
+              Point<3> xi;
+              for (unsigned int d = 0; d < 3; ++d)
+                xi[d] = gauss[(q >> d) & 1];
+              for (unsigned int c = 0; c < 8; ++c)
+                {
+                  t.M[q][c] = 1;
+                  for (unsigned int d = 0; d < 3; ++d)
+                    t.M[q][c] *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
+                  for (unsigned int e = 0; e < 3; ++e)
+                    {
+                      double g = ((c >> e) & 1) ? 1. : -1.;
+                      for (unsigned int d = 0; d < 3; ++d)
+                        if (d != e)
+                          g *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
+                      t.dM[q][c][e] = g;
+                    }
+                }
+            }
+          return t;
+        }();
+        std::array<Tensor<1, 3>, 8> offset;
+        for (unsigned int c = 1; c < 8; ++c)
+          offset[c] = corners[c] - corners[0];
+        alpha.fill(0.);
+        beta.fill(Tensor<1, dim>());
+        double volume = 0;
+        for (unsigned int q = 0; q < 8; ++q)
           {
-            M[c] = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              M[c] *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
-            for (unsigned int e = 0; e < dim; ++e)
+            // The Jacobian's columns j_e = sum_c (x_c - x_0) dM_c / dxi_e
+            // (quadrature weight 1/8, dropped: it cancels in the ratios).
+            Tensor<1, 3> j[3];
+            for (unsigned int c = 1; c < 8; ++c)
+              for (unsigned int e = 0; e < 3; ++e)
+                j[e] += table.dM[q][c][e] * offset[c];
+            const Tensor<1, 3> k0  = cross_product_3d(j[1], j[2]);
+            const Tensor<1, 3> k1  = cross_product_3d(j[2], j[0]);
+            const Tensor<1, 3> k2  = cross_product_3d(j[0], j[1]);
+            const double       det = j[0] * k0;
+            if (!(det > 0))
+              return false;
+            volume += det;
+            for (unsigned int c = 0; c < 8; ++c)
               {
-                double g = ((c >> e) & 1) ? 1. : -1.;
-                for (unsigned int d = 0; d < dim; ++d)
-                  if (d != e)
-                    g *= ((c >> d) & 1) ? xi[d] : 1. - xi[d];
-                dM[c][e] = g;
+                alpha[c] += table.M[q][c] * det;
+                beta[c] += table.dM[q][c][0] * k0 + table.dM[q][c][1] * k1 +
+                           table.dM[q][c][2] * k2;
               }
-            J += outer_product(corners[c] - corners[0], dM[c]);
           }
-        const double det = determinant(J);
-        if (!(det > 0))
-          return false;
-        const Tensor<2, dim> inverse_transpose = transpose(invert(J));
-        volume += det;
         for (unsigned int c = 0; c < n_corners; ++c)
           {
-            alpha[c] += M[c] * det;
-            beta[c] += det * (inverse_transpose * dM[c]);
+            alpha[c] /= volume;
+            beta[c] /= volume;
           }
+        return true;
       }
-    for (unsigned int c = 0; c < n_corners; ++c)
-      {
-        alpha[c] /= volume;
-        beta[c] /= volume;
-      }
-    return true;
   }
 
 

@@ -191,6 +191,13 @@ namespace MPM
      * not checkpointed: the first step after a restart searches.
      */
     std::vector<CornerHint> corner_hints;
+    /**
+     * 3D only (else empty): each hinted corner's reference coordinates in
+     * its cell in the last step, where Newton's iteration on a cell that
+     * is not a parallelepiped starts (TrilinearCellMap).
+     */
+    std::vector<std::array<Point<dim>, PointDomains<dim>::n_corners>>
+      corner_hint_xi;
     /// Margin of a hint's acceptance (see CornerHint), in reference
     /// coordinates: far above the round-off of the inverse maps and their
     /// tolerance (reference_cell_tolerance) for cells of a patch whose

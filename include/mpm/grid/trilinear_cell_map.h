@@ -1,0 +1,155 @@
+#ifndef mpm_grid_trilinear_cell_map_h
+#define mpm_grid_trilinear_cell_map_h
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <mpm/grid/inverse_mapping.h>
+
+#include <array>
+#include <cmath>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * The trilinear (isoparametric) map of one hexahedron in monomial form,
+   *   x(xi) = v0 + b1 xi + b2 eta + b4 zeta + b3 xi eta + b5 xi zeta
+   *              + b6 eta zeta + b7 xi eta zeta,
+   * (b_i named by the vertex whose bits they start from, deal.II's vertex
+   * order), and its inverse by Newton's iteration from a given start.
+   *
+   * What it is for: locating a point that moved a fraction of a cell since
+   * the last step in a cell that is not a parallelepiped (terrain), where
+   * inverse_map_newton() starts from the cell's centre and evaluates the
+   * map vertex by vertex. Here the map and its Jacobian are a few products
+   * of the coefficients, and Newton starts from the point's last reference
+   * coordinates: two or three steps instead of four or five. The
+   * iteration is inverse_map_newton()'s (steps halved while they increase
+   * the residual, converged when a step is at most 1e-10 in every
+   * reference coordinate), so the two agree to round-off of the converged
+   * root. Cheap to construct (the coefficients are seven sums of vertex
+   * differences): callers build one per cell on the stack.
+   */
+  class TrilinearCellMap
+  {
+  public:
+    /// The map of the hexahedron with @p vertices in deal.II's order.
+    explicit TrilinearCellMap(const std::array<Point<3>, 8> &v)
+      : origin(v[0])
+      , b1(v[1] - v[0])
+      , b2(v[2] - v[0])
+      , b4(v[4] - v[0])
+      , b3((v[3] - v[1]) - (v[2] - v[0]))
+      , b5((v[5] - v[1]) - (v[4] - v[0]))
+      , b6((v[6] - v[2]) - (v[4] - v[0]))
+      , b7(((v[7] - v[6]) - (v[5] - v[4])) - ((v[3] - v[2]) - (v[1] - v[0])))
+    {}
+
+    /**
+     * The map x(xi) - v0 at @p xi (@p value) and its Jacobian dx/dxi
+     * (@p jacobian[a][d] = dx_a / dxi_d).
+     */
+    void
+    evaluate(const Point<3>  &xi,
+             Tensor<1, 3>    &value,
+             Tensor<2, 3>    &jacobian) const
+    {
+      const double x = xi[0], y = xi[1], z = xi[2];
+      const Tensor<1, 3> d_x = b1 + b3 * y + b5 * z + b7 * (y * z);
+      const Tensor<1, 3> d_y = b2 + b3 * x + b6 * z + b7 * (x * z);
+      const Tensor<1, 3> d_z = b4 + b5 * x + b6 * y + b7 * (x * y);
+      value = b1 * x + b2 * y + b4 * z + b3 * (x * y) + b5 * (x * z) +
+              b6 * (y * z) + b7 * (x * y * z);
+      for (unsigned int a = 0; a < 3; ++a)
+        {
+          jacobian[a][0] = d_x[a];
+          jacobian[a][1] = d_y[a];
+          jacobian[a][2] = d_z[a];
+        }
+    }
+
+    /**
+     * Reference coordinates of @p x by Newton's iteration from @p start
+     * (the point's reference coordinates of the last step: within a few
+     * hundredths of the root). A start farther than one cell from the
+     * unit cube is not a start: the iteration then begins as
+     * inverse_map_newton() does, with the affine map of the centre.
+     */
+    InverseMappingResult<3>
+    inverse(const Point<3> &x, const Point<3> &start) const
+    {
+      const Tensor<1, 3> r = x - origin;
+      InverseMappingResult<3> result;
+      Point<3>                xi = start;
+      Tensor<1, 3>            value;
+      Tensor<2, 3>            jacobian;
+      if (!near_unit_cell(start))
+        {
+          xi = Point<3>(0.5, 0.5, 0.5);
+          evaluate(xi, value, jacobian);
+          if (!(std::abs(determinant(jacobian)) > 0))
+            return result;
+          xi += invert(jacobian) * (r - value);
+        }
+      evaluate(xi, value, jacobian);
+      Tensor<1, 3> residual = value - r;
+      for (unsigned int iteration = 1; iteration <= 20; ++iteration)
+        {
+          result.n_iterations = iteration;
+          const double det    = determinant(jacobian);
+          if (!(std::abs(det) > 0))
+            return result;
+          const Tensor<1, 3> step = -(invert(jacobian) * residual);
+          const double       size = max_abs(step);
+          if (!(size <= 1e6))
+            return result;
+          if (size <= 1e-10)
+            {
+              result.xi      = xi + step;
+              result.success = true;
+              return result;
+            }
+          // Halve the step while it increases the residual.
+          double       alpha = 1;
+          Point<3>     trial;
+          Tensor<1, 3> trial_value;
+          Tensor<2, 3> trial_jacobian;
+          for (unsigned int k = 0; k <= 10; ++k, alpha *= 0.5)
+            {
+              trial = xi + alpha * step;
+              evaluate(trial, trial_value, trial_jacobian);
+              if ((trial_value - r).norm_square() <= residual.norm_square())
+                break;
+            }
+          xi       = trial;
+          jacobian = trial_jacobian;
+          residual = trial_value - r;
+        }
+      result.xi = xi;
+      return result;
+    }
+
+  private:
+    static bool
+    near_unit_cell(const Point<3> &xi)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (!(xi[d] >= -1. && xi[d] <= 2.))
+          return false;
+      return true;
+    }
+
+    static double
+    max_abs(const Tensor<1, 3> &t)
+    {
+      return std::max(std::abs(t[0]), std::max(std::abs(t[1]), std::abs(t[2])));
+    }
+
+    Point<3>     origin;
+    Tensor<1, 3> b1, b2, b4, b3, b5, b6, b7;
+  };
+} // namespace MPM
+
+#endif
