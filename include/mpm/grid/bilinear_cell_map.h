@@ -139,10 +139,11 @@ namespace MPM
      * common case of the closed form is computed for all @p n points
      * before any of them is decided, so that their square roots and
      * divisions (a chain of about 50 cycles each) run side by side
-     * instead of one after the other. The uncommon cases (a parallelogram,
-     * a root outside the unit square, a polish) go through contains().
-     * For the corners of a CPDI domain, whose cells are known from the
-     * last step.
+     * instead of one after the other; the same for the divisions of
+     * Cramer's rule in parallelograms. The uncommon cases (a root outside
+     * the unit square, a polish) go through contains().
+     * For the four corners of a CPDI domain, each tested in the cell it
+     * most likely lies in.
      */
     template <std::size_t n>
     static void
@@ -151,9 +152,23 @@ namespace MPM
              std::array<Point<2>, n>                      &xi,
              std::array<bool, n>                          &inside)
     {
+      // Parallelograms: Cramer's rule for all of them, then the decisions
+      // (contains()' arithmetic).
+      bool all_parallelograms = true;
+      for (std::size_t k = 0; k < n; ++k)
+        if (maps[k]->affine)
+          xi[k] = maps[k]->affine_inverse(x[k] - maps[k]->origin);
+        else
+          all_parallelograms = false;
+      for (std::size_t k = 0; k < n; ++k)
+        if (maps[k]->affine)
+          inside[k] = inside_unit_cell(xi[k]);
+      if (all_parallelograms)
+        return;
       std::array<double, n>       B, C, sqrt_discriminant, q;
       std::array<bool, n>         common;
       std::array<Tensor<1, 2>, n> r;
+      std::array<Point<2>, n>     root;
       for (std::size_t k = 0; k < n; ++k)
         {
           const BilinearCellMap &m = *maps[k];
@@ -175,13 +190,18 @@ namespace MPM
           const double       e_norm = e * e;
           common[k] = common[k] && std::isfinite(t) && e_norm > 0;
           const double s = (rhs * e) / (common[k] ? e_norm : 1.);
-          xi[k] = m.solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
+          root[k] = m.solve_for_eta ? Point<2>(s, t) : Point<2>(t, s);
         }
       for (std::size_t k = 0; k < n; ++k)
-        if (common[k] && xi[k][0] >= 0 && xi[k][0] <= 1 && xi[k][1] >= 0 &&
-            xi[k][1] <= 1 &&
-            !maps[k]->needs_polish(sqrt_discriminant[k], B[k]))
-          inside[k] = true;
+        if (maps[k]->affine)
+          continue;
+        else if (common[k] && root[k][0] >= 0 && root[k][0] <= 1 &&
+                 root[k][1] >= 0 && root[k][1] <= 1 &&
+                 !maps[k]->needs_polish(sqrt_discriminant[k], B[k]))
+          {
+            xi[k]     = root[k];
+            inside[k] = true;
+          }
         else
           inside[k] = maps[k]->contains(x[k], xi[k]);
     }

@@ -168,7 +168,10 @@ namespace MPM
      * ordered search only if it holds the corner strictly inside (farther
      * than corner_hint_margin from its faces in reference coordinates),
      * where no other cell of the patch holds it and the ordered search
-     * would find the same cell: a hint changes the cost, never the result.
+     * would find the same cell, or if it is the cell the ordered search
+     * tries first (the previous point's): a hint changes the cost, never
+     * the result. Kept only for points in cells that are not
+     * parallelograms (parallelepipeds), where the ordered search is dear.
      */
     struct CornerHint
     {
