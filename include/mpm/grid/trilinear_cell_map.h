@@ -89,7 +89,7 @@ namespace MPM
         {
           xi = Point<3>(0.5, 0.5, 0.5);
           evaluate(xi, value, jacobian);
-          if (!(std::abs(determinant(jacobian)) > 0))
+          if (is_singular(jacobian))
             return result;
           xi += invert(jacobian) * (r - value);
         }
@@ -98,8 +98,7 @@ namespace MPM
       for (unsigned int iteration = 1; iteration <= 20; ++iteration)
         {
           result.n_iterations = iteration;
-          const double det    = determinant(jacobian);
-          if (!(std::abs(det) > 0))
+          if (is_singular(jacobian))
             return result;
           const Tensor<1, 3> step = -(invert(jacobian) * residual);
           const double       size = max_abs(step);
@@ -132,6 +131,20 @@ namespace MPM
     }
 
   private:
+    /// inverse_map_newton()'s test, |det J| <= 1e-14 times the product of
+    /// the column lengths, squared (no square roots).
+    static bool
+    is_singular(const Tensor<2, 3> &jacobian)
+    {
+      double scale = 1;
+      for (unsigned int d = 0; d < 3; ++d)
+        scale *= jacobian[0][d] * jacobian[0][d] +
+                 jacobian[1][d] * jacobian[1][d] +
+                 jacobian[2][d] * jacobian[2][d];
+      const double det = determinant(jacobian);
+      return !(det * det > 1e-28 * scale);
+    }
+
     static bool
     near_unit_cell(const Point<3> &xi)
     {
