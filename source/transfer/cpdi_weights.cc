@@ -326,6 +326,8 @@ namespace MPM
                                                       patch_vertices;
             std::array<const BilinearCellMap *, 64>   patch_maps;
             std::array<const ParallelepipedMap *, 64> patch_parallelepipeds;
+            // (vertices_of() and the like read them: a corner's search
+            // looks them up first.)
             bool patch_looked_up = false;
             const auto look_up_patch = [&]() {
               AssertThrow(patch.size() <= 64, ExcInternalError());
@@ -340,18 +342,12 @@ namespace MPM
               patch_looked_up = true;
             };
             const auto vertices_of = [&](const unsigned int i) {
-              if (!patch_looked_up)
-                look_up_patch();
               return patch_vertices[i];
             };
             const auto map_of = [&](const unsigned int i) {
-              if (!patch_looked_up)
-                look_up_patch();
               return patch_maps[i];
             };
             const auto parallelepiped_of = [&](const unsigned int i) {
-              if (!patch_looked_up)
-                look_up_patch();
               return patch_parallelepipeds[i];
             };
             // Periodic boundaries: each patch cell's image.
@@ -528,6 +524,8 @@ namespace MPM
                     {
                       if (hit[c])
                         continue;
+                      if (!patch_looked_up)
+                        look_up_patch();
                       bool found = false;
                       const unsigned int n_patch = patch.size();
                       for (unsigned int j = 0; j <= n_patch; ++j)
