@@ -452,9 +452,6 @@ namespace MPM
                   parallelepiped = true;
                   for (unsigned int c = 0; c < n_corners; ++c)
                     x[c] = x_p + s * D[c];
-                  // The last step's cells of the corners, where they hold
-                  // them strictly inside (CornerHint). In 2D the closed
-                  // forms of all corners side by side.
                   // First each corner in the cell it lay in in the last
                   // step (CornerHint; by its index, without reading the
                   // patch), all corners side by side: in 2D their
