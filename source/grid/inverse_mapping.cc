@@ -5,6 +5,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/grid/bilinear_cell_map.h>
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/newton_inverse_map.h>
 
 #include <cmath>
 #include <limits>
@@ -93,36 +94,6 @@ namespace MPM
         }
     }
 
-    template <int dim>
-    inline double
-    max_abs(const Tensor<1, dim> &t)
-    {
-      double m = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        m = std::max(m, std::abs(t[d]));
-      return m;
-    }
-
-    /**
-     * Whether @p jacobian is too close to singular to be inverted: its
-     * determinant is below round-off relative to the product of its
-     * column lengths (so the test does not depend on the cell size).
-     */
-    template <int dim>
-    inline bool
-    is_singular(const Tensor<2, dim> &jacobian)
-    {
-      double scale = 1;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          double column = 0;
-          for (unsigned int a = 0; a < dim; ++a)
-            column += jacobian[a][d] * jacobian[a][d];
-          scale *= std::sqrt(column);
-        }
-      const double det = determinant(jacobian);
-      return !(std::abs(det) > 1e-14 * scale);
-    }
   } // namespace
 
 
@@ -164,58 +135,19 @@ namespace MPM
     std::array<Tensor<1, dim>, GeometryInfo<dim>::vertices_per_cell> relative;
     for (unsigned int i = 0; i < GeometryInfo<dim>::vertices_per_cell; ++i)
       relative[i] = vertices[i] - vertices[0];
-    const Tensor<1, dim> r = x - vertices[0];
-
-    InverseMappingResult<dim> result;
-
-    // Initial guess: the affine map with the value and Jacobian of the
-    // cell's map at the centre (exact for parallelograms).
-    Point<dim> xi;
-    for (unsigned int d = 0; d < dim; ++d)
-      xi[d] = 0.5;
-    Tensor<1, dim> value;
-    Tensor<2, dim> jacobian;
-    evaluate_map<dim>(relative, xi, value, jacobian);
-    if (is_singular(jacobian))
-      return result;
-    xi += invert(jacobian) * (r - value);
-
-    evaluate_map<dim>(relative, xi, value, jacobian);
-    Tensor<1, dim> residual = value - r;
-    for (unsigned int iteration = 1; iteration <= max_iterations; ++iteration)
-      {
-        result.n_iterations = iteration;
-        if (is_singular(jacobian))
-          return result;
-        const Tensor<1, dim> step = -(invert(jacobian) * residual);
-        if (!(max_abs(step) <= 1e6))
-          // Diverging, or NaN: the point is very far from this cell.
-          return result;
-        if (max_abs(step) <= step_tolerance)
-          {
-            result.xi      = xi + step;
-            result.success = true;
-            return result;
-          }
-        // Halve the step while it increases the residual.
-        double         alpha = 1;
-        Point<dim>     trial;
-        Tensor<1, dim> trial_value;
-        Tensor<2, dim> trial_jacobian;
-        for (unsigned int k = 0; k <= 10; ++k, alpha *= 0.5)
-          {
-            trial = xi + alpha * step;
-            evaluate_map<dim>(relative, trial, trial_value, trial_jacobian);
-            if ((trial_value - r).norm_square() <= residual.norm_square())
-              break;
-          }
-        xi       = trial;
-        value    = trial_value;
-        jacobian = trial_jacobian;
-        residual = value - r;
-      }
-    result.xi = xi;
-    return result;
+    // From the affine map with the value and Jacobian of the cell's map at
+    // the centre (exact for parallelograms).
+    return internal::newton_inverse_map<dim>(
+      [&relative](const Point<dim>     &xi,
+                  Tensor<1, dim>       &value,
+                  Tensor<2, dim>       &jacobian) {
+        evaluate_map<dim>(relative, xi, value, jacobian);
+      },
+      x - vertices[0],
+      false,
+      Point<dim>(),
+      step_tolerance,
+      max_iterations);
   }
 
 

@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/newton_inverse_map.h>
 
 #include <array>
 #include <cmath>
@@ -26,10 +27,8 @@ namespace MPM
    * map vertex by vertex. Here the map and its Jacobian are a few products
    * of the coefficients, and Newton starts from the point's last reference
    * coordinates: two or three steps instead of four or five. The
-   * iteration is inverse_map_newton()'s (steps halved while they increase
-   * the residual, converged when a step is at most 1e-10 in every
-   * reference coordinate), so the two agree to round-off of the converged
-   * root. Cheap to construct (the coefficients are seven sums of vertex
+   * iteration is inverse_map_newton()'s (internal::newton_inverse_map()),
+   * so the two agree to round-off of the converged root. Cheap to construct (the coefficients are seven sums of vertex
    * differences): callers build one per cell on the stack.
    */
   class TrilinearCellMap
@@ -80,71 +79,18 @@ namespace MPM
     InverseMappingResult<3>
     inverse(const Point<3> &x, const Point<3> &start) const
     {
-      const Tensor<1, 3> r = x - origin;
-      InverseMappingResult<3> result;
-      Point<3>                xi = start;
-      Tensor<1, 3>            value;
-      Tensor<2, 3>            jacobian;
-      if (!near_unit_cell(start))
-        {
-          xi = Point<3>(0.5, 0.5, 0.5);
-          evaluate(xi, value, jacobian);
-          if (is_singular(jacobian))
-            return result;
-          xi += invert(jacobian) * (r - value);
-        }
-      evaluate(xi, value, jacobian);
-      Tensor<1, 3> residual = value - r;
-      for (unsigned int iteration = 1; iteration <= 20; ++iteration)
-        {
-          result.n_iterations = iteration;
-          if (is_singular(jacobian))
-            return result;
-          const Tensor<1, 3> step = -(invert(jacobian) * residual);
-          const double       size = max_abs(step);
-          if (!(size <= 1e6))
-            return result;
-          if (size <= 1e-10)
-            {
-              result.xi      = xi + step;
-              result.success = true;
-              return result;
-            }
-          // Halve the step while it increases the residual.
-          double       alpha = 1;
-          Point<3>     trial;
-          Tensor<1, 3> trial_value;
-          Tensor<2, 3> trial_jacobian;
-          for (unsigned int k = 0; k <= 10; ++k, alpha *= 0.5)
-            {
-              trial = xi + alpha * step;
-              evaluate(trial, trial_value, trial_jacobian);
-              if ((trial_value - r).norm_square() <= residual.norm_square())
-                break;
-            }
-          xi       = trial;
-          jacobian = trial_jacobian;
-          residual = trial_value - r;
-        }
-      result.xi = xi;
-      return result;
+      return internal::newton_inverse_map<3>(
+        [this](const Point<3> &xi, Tensor<1, 3> &value, Tensor<2, 3> &J) {
+          evaluate(xi, value, J);
+        },
+        x - origin,
+        near_unit_cell(start),
+        start,
+        1e-10,
+        20);
     }
 
   private:
-    /// inverse_map_newton()'s test, |det J| <= 1e-14 times the product of
-    /// the column lengths, squared (no square roots).
-    static bool
-    is_singular(const Tensor<2, 3> &jacobian)
-    {
-      double scale = 1;
-      for (unsigned int d = 0; d < 3; ++d)
-        scale *= jacobian[0][d] * jacobian[0][d] +
-                 jacobian[1][d] * jacobian[1][d] +
-                 jacobian[2][d] * jacobian[2][d];
-      const double det = determinant(jacobian);
-      return !(det * det > 1e-28 * scale);
-    }
-
     static bool
     near_unit_cell(const Point<3> &xi)
     {
@@ -152,12 +98,6 @@ namespace MPM
         if (!(xi[d] >= -1. && xi[d] <= 2.))
           return false;
       return true;
-    }
-
-    static double
-    max_abs(const Tensor<1, 3> &t)
-    {
-      return std::max(std::abs(t[0]), std::max(std::abs(t[1]), std::abs(t[2])));
     }
 
     Point<3>     origin;
