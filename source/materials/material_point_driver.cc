@@ -248,6 +248,11 @@ namespace MPM
     for (unsigned int n = 0; n < n_total; ++n)
       {
         Tensor<2, 3> L = velocity_gradient(n, dt);
+        // One point stands for a homogeneous body: a regularised variable
+        // is its own value, (1 - m) v + m v (the MPM step sets it from the
+        // neighbours, NonlocalAveraging).
+        if (const auto *nonlocal = material.model->nonlocal_variable())
+          state[nonlocal->nonlocal_variable] = state[nonlocal->local_variable];
         if (path == Path::drained_triaxial)
           {
             // The lateral strain rate x (L_xx = L_zz = x) that keeps

@@ -172,6 +172,29 @@ namespace MPM
           "soil from peak to residual is the same on every mesh "
           "(doc/slope_stability.md). 0: not regularised, the strains as "
           "given in every cell.");
+        prm.declare_entry(
+          "Nonlocal radius",
+          "0",
+          Patterns::Double(0),
+          "Non-local regularisation (m): the strength of a point is that of "
+          "the regularised plastic shear strain kappa* = (1 - m) kappa + m "
+          "kappa_avg, kappa_avg the average of kappa over the points of the "
+          "material within this radius, weighted by their volume and by "
+          "(1 - r^2 / R^2)^2 (state variable nonlocal_plastic_shear_strain). "
+          "The shear bands then have a width set by this radius rather than "
+          "by the cells: take it at least two or three cells of the coarsest "
+          "mesh you compare (doc/slope_stability.md). Its cost grows with "
+          "the radius over the cell size. 0: local (the strength of the "
+          "point's own kappa). Not together with 'Reference cell size'.");
+        prm.declare_entry(
+          "Over-nonlocal factor",
+          "2",
+          Patterns::Double(1),
+          "m in kappa* = (1 - m) kappa + m kappa_avg, >= 1: 1 is the plain "
+          "non-local average; m > 1 (over-nonlocal; 2 as in Vermeer and "
+          "Brinkgreve 1994 and Galavi and Schweiger 2010) keeps the plastic "
+          "zone of a softening material from shrinking to one cell, which "
+          "m = 1 does not ensure.");
       }
       prm.leave_subsection();
     }
@@ -212,6 +235,16 @@ namespace MPM
           softening_start    = prm.get_double("Peak plastic shear strain");
           softening_end      = prm.get_double("Residual plastic shear strain");
           reference_cell_size = prm.get_double("Reference cell size");
+          nonlocal.radius     = prm.get_double("Nonlocal radius");
+          nonlocal.over_nonlocal_factor =
+            prm.get_double("Over-nonlocal factor");
+          check_input(!(reference_cell_size > 0 && nonlocal.radius > 0),
+                      entry("Reference cell size") + " = " +
+                        std::to_string(reference_cell_size) + " and " +
+                        entry("Nonlocal radius") + " = " +
+                        std::to_string(nonlocal.radius) +
+                        ": these are two regularisations of the same "
+                        "softening; set one of them to 0.");
           check_input(phi_r > 0 && phi_r <= phi_degrees,
                       entry("Residual friction angle") + " = " +
                         std::to_string(phi_r) +
@@ -245,6 +278,7 @@ namespace MPM
                      c_r / std::tan(residual_strength.friction_angle));
         }
       prm.leave_subsection();
+      nonlocal_state = softening && nonlocal.radius > 0;
 
       inverse_two_shear_modulus = 0.5 / elasticity.shear_modulus;
       given_strength            = peak_strength;
@@ -627,6 +661,24 @@ namespace MPM
 
 
     unsigned int
+    MohrCoulomb::return_at_kappa(std::array<double, 3> &s,
+                                 double                &plastic_shear_increment,
+                                 const double           kappa,
+                                 const double           start,
+                                 const double           end) const
+    {
+      if (kappa >= end)
+        return return_principal_inline<true>(residual, s, plastic_shear_increment);
+      if (kappa <= start)
+        return return_principal_inline<true>(peak, s, plastic_shear_increment);
+      return return_principal_inline<false>(
+        make_surfaces(strength_at(kappa, start, end), false),
+        s,
+        plastic_shear_increment);
+    }
+
+
+    unsigned int
     MohrCoulomb::return_with_softening(std::array<double, 3> &s,
                                        double &plastic_shear_increment,
                                        const double kappa,
@@ -640,18 +692,11 @@ namespace MPM
         return return_principal_inline<true>(residual, s, plastic_shear_increment);
 
       const std::array<double, 3> trial = s;
-      // The return from the trial stress with the strength at k, the
-      // prepared surfaces where the strength is the peak or residual one.
+      // The return from the trial stress with the strength at k.
       double     increment = 0;
       const auto return_at = [&](const double k) {
         s = trial;
-        if (k >= softening_end)
-          return return_principal_inline<true>(residual, s, increment);
-        if (k <= softening_start)
-          return return_principal_inline<true>(peak, s, increment);
-        return return_principal_inline<false>(make_surfaces(strength_at(k, softening_start, softening_end), false),
-                                       s,
-                                       increment);
+        return return_at_kappa(s, increment, k, softening_start, softening_end);
       };
 
       // Most steps of a point inside the softening range are elastic: the
@@ -779,10 +824,28 @@ namespace MPM
       const auto return_mapping = [&](std::array<double, 3> &s,
                                       double &plastic_shear_increment) {
         if constexpr (with_softening)
-          return return_with_softening(s,
+          {
+            // Non-local: at the fixed strength of the regularised strain
+            // (explicit in it; the class documentation).
+            if (nonlocal_state)
+              {
+                if (state[1] > softening_start &&
+                    is_elastic(strength_at(state[1], softening_start, softening_end), s))
+                  {
+                    plastic_shear_increment = 0;
+                    return 0u;
+                  }
+                return return_at_kappa(s,
                                        plastic_shear_increment,
-                                       state[0],
-                                       kappa_scale);
+                                       state[1],
+                                       softening_start,
+                                       softening_end);
+              }
+            return return_with_softening(s,
+                                         plastic_shear_increment,
+                                         state[0],
+                                         kappa_scale);
+          }
         else
           return return_principal_inline<true>(peak,
                                                s,

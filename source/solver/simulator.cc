@@ -26,6 +26,7 @@ namespace MPM
     , pcout(std::cout, Utilities::MPI::this_mpi_process(comm) == 0)
     , grid(comm)
     , point_update(materials, transfer, point_relocation, time_stepping)
+    , nonlocal_averaging(materials)
     // Rank 0's own timings: with MPI_COMM_SELF the timer does not try to
     // synchronise in its destructor when an input error unwinds the stack.
     , timer(MPI_COMM_SELF, pcout, TimerOutput::never, TimerOutput::wall_times)
@@ -274,6 +275,7 @@ namespace MPM
     compute_nodal_velocity(nodal.velocity);
     if (scheme == UpdateScheme::usf)
       {
+        average_nonlocal_variables();
         weights->update_stress(nodal.velocity, false);
         weights->map_forces();
       }
@@ -289,10 +291,14 @@ namespace MPM
     set_max_point_speed(
       weights->update_points_from_grid(scheme == UpdateScheme::musl));
     if (scheme == UpdateScheme::usl)
-      weights->update_stress(nodal.velocity_new, false);
+      {
+        average_nonlocal_variables();
+        weights->update_stress(nodal.velocity_new, false);
+      }
     else if (scheme == UpdateScheme::musl)
       {
         compute_nodal_velocity(nodal.velocity_new);
+        average_nonlocal_variables();
         weights->update_stress(nodal.velocity_new,
                                transfer.apic() != nullptr);
       }
@@ -303,6 +309,17 @@ namespace MPM
     time += time_step;
     ++step;
     relocate_points();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::average_nonlocal_variables()
+  {
+    if (!nonlocal_averaging.active())
+      return;
+    TimerOutput::Scope t(timer, "nonlocal averaging");
+    nonlocal_averaging.update(particle_handler, mpi_communicator);
   }
 
 

@@ -119,28 +119,39 @@ namespace MPM
         return 1 - std::sin(given_strength.friction_angle);
       }
 
+      /**
+       * The accumulated plastic shear strain, and with a non-local
+       * regularisation (nonlocal_variable()) the regularised one that sets
+       * the strength.
+       */
       unsigned int
       n_state_variables() const final
       {
-        return 1;
+        return nonlocal_state ? 2 : 1;
       }
 
       std::vector<std::string>
       state_variable_names() const final
       {
+        if (nonlocal_state)
+          return {"plastic_shear_strain", "nonlocal_plastic_shear_strain"};
         return {"plastic_shear_strain"};
       }
 
       void
       initialize_state(const ArrayView<double> &state) const final
       {
-        AssertIndexRange(0, state.size());
-        state[0] = 0;
+        AssertIndexRange(n_state_variables() - 1, state.size());
+        for (unsigned int i = 0; i < n_state_variables(); ++i)
+          state[i] = 0;
       }
 
     protected:
       /// The strength as given (the peak strength of a softening model).
       FrictionalStrength given_strength;
+      /// Whether the points carry a regularised plastic shear strain
+      /// (state variable 1) besides their own.
+      bool nonlocal_state = false;
     };
 
   } // namespace MaterialModels

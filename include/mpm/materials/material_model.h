@@ -150,6 +150,37 @@ namespace MPM
                         "without a frictional strength."));
     }
 
+    /**
+     * A state variable that the model wants regularised by a non-local
+     * average over the neighbouring points of its material (a softening
+     * law whose strength would otherwise depend on the cell size through
+     * the width of its shear bands). Before every stress update the MPM
+     * step (NonlocalAveraging) writes into state variable @p nonlocal_variable
+     * the value (1 - m) v + m v_avg, at least 0, where v is state variable
+     * @p local_variable of the point, v_avg its average weighted by
+     * volume and by (1 - r^2 / R^2)^2 over the points of the material
+     * within @p radius R, and m the @p over_nonlocal_factor. The model
+     * reads the regularised value and updates the local one.
+     */
+    struct NonlocalVariable
+    {
+      unsigned int local_variable       = 0;
+      unsigned int nonlocal_variable    = 1;
+      double       radius               = 0;
+      double       over_nonlocal_factor = 1;
+    };
+
+    /**
+     * The variable of a model regularised by a non-local average, or null
+     * (the default: the model's points are updated from their own state
+     * alone, and the step does no averaging for them).
+     */
+    virtual const NonlocalVariable *
+    nonlocal_variable() const
+    {
+      return nullptr;
+    }
+
     virtual unsigned int
     n_state_variables() const
     {

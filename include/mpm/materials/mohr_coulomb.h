@@ -54,6 +54,22 @@ namespace MPM
      * before the peak or past the residual strain use surfaces prepared
      * once, like a model without softening; only points inside the
      * softening range pay for surfaces built on the fly.
+     *
+     * Softening localises in bands as narrow as the mesh allows, so the
+     * strain-softening law needs a length. Two are offered. 'Reference cell
+     * size' scales the softening strains by the cell size (a band one cell
+     * wide dissipates the same on every mesh). 'Nonlocal radius' R gives
+     * the strength a non-local argument: the step writes into state
+     * variable 1 the over-nonlocal kappa* = (1 - m) kappa + m kappa_avg
+     * (kappa_avg the average over the points within R, m the 'Over-nonlocal
+     * factor'; NonlocalAveraging) from the kappa of the step before, and
+     * the return is then made at the fixed strength of kappa* (explicit in
+     * the regularised strain, no iteration) while the point's own kappa
+     * accumulates the plastic increment. The band width is then set by R,
+     * not by the cells (Vermeer and Brinkgreve 1994, Galavi and Schweiger
+     * 2010; m > 1 because with m = 1 the plastic zone of a softening
+     * plasticity model can still shrink to one cell, Jirasek and Rolshoven
+     * 2003).
      */
     class MohrCoulomb : public FrictionalModel
     {
@@ -110,6 +126,17 @@ namespace MPM
 
       double
       p_wave_modulus() const override;
+
+      /**
+       * With 'Strain softening/Nonlocal radius' > 0, the plastic shear
+       * strain (state variable 0) regularised into state variable 1, which
+       * sets the strength (see the class documentation); else null.
+       */
+      const NonlocalVariable *
+      nonlocal_variable() const override
+      {
+        return nonlocal_state ? &nonlocal : nullptr;
+      }
 
       /**
        * Divide peak and residual strength (FrictionalStrength::reduced())
@@ -187,6 +214,19 @@ namespace MPM
                             const double           kappa_scale) const;
 
       /**
+       * The return from the trial stress @p s at the fixed strength of
+       * plastic shear strain @p kappa within the softening range
+       * [@p start, @p end] (the prepared surfaces at the peak and residual
+       * strengths, else surfaces built for this return).
+       */
+      unsigned int
+      return_at_kappa(std::array<double, 3> &s,
+                      double                &plastic_shear_increment,
+                      const double           kappa,
+                      const double           start,
+                      const double           end) const;
+
+      /**
        * Try one candidate set of @p m active planes (a template argument,
        * so that the loops over the set unroll; the sets are tried in the
        * order of candidate_topology()). On success, @p x holds the
@@ -260,6 +300,9 @@ namespace MPM
       double softening_end   = 0;
       /// 'Reference cell size' (0: not regularised).
       double reference_cell_size = 0;
+      /// The non-local regularisation ('Nonlocal radius' > 0; then
+      /// nonlocal_state is set).
+      NonlocalVariable nonlocal;
 
       /**
        * A candidate active set with what depends only on the material:

@@ -21,6 +21,7 @@
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/statistics_file.h>
 #include <mpm/solver/time_stepping.h>
+#include <mpm/material_points/nonlocal_averaging.h>
 #include <mpm/material_points/point_update.h>
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/velocity_transfer.h>
@@ -280,6 +281,15 @@ namespace MPM
     void
     relocate_points();
 
+    /**
+     * The regularised state variables of the points of non-local
+     * materials (NonlocalAveraging), from the points' positions and local
+     * variables now; called before every stress update. Costs nothing
+     * without such materials.
+     */
+    void
+    average_nonlocal_variables();
+
     void
     write_output(const bool force);
 
@@ -327,6 +337,9 @@ namespace MPM
     /// A point's velocity, position and stress from its interpolated
     /// grid values.
     PointUpdate<dim> point_update;
+    /// The regularised state variables of non-local materials, set before
+    /// every stress update (average_nonlocal_variables()).
+    NonlocalAveraging<dim> nonlocal_averaging;
     /// The particle-grid weights ('Transfer/Particle-grid weights').
     std::unique_ptr<ParticleGridWeights<dim>> weights;
 

@@ -1,0 +1,260 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/material_points/nonlocal_averaging.h>
+#include <mpm/material_points/property_layout.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  NonlocalGrid<dim>::reinit(const Point<dim>  &lower,
+                            const Point<dim>  &upper,
+                            const double       radius,
+                            const std::string &what)
+  {
+    Assert(radius > 0, ExcMessage("The non-local radius must be positive."));
+    this->radius = radius;
+    spacing      = radius / nodes_per_radius;
+    double n     = 1;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        // The origin at a multiple of the spacing: the grid, and so the
+        // averages, depend on the points' positions alone, not on the box
+        // they happen to fill in this step.
+        origin[d] = std::floor((lower[d] - radius) / spacing) * spacing;
+        const double cells =
+          std::ceil((upper[d] + radius - origin[d]) / spacing) + 1;
+        n *= cells + 1;
+        n_nodes_per_direction[d] =
+          static_cast<unsigned int>(std::min(cells + 1, 4e9));
+      }
+    if (n > 1e8)
+      throw std::runtime_error(
+        "The non-local average of " + what + " would need a grid of " +
+        std::to_string(n) + " nodes (spacing " + std::to_string(spacing) +
+        " m, a quarter of the radius, over the material's points): the "
+        "radius is too small for the extent of the material. Increase the "
+        "radius or split the material.");
+    sums.assign(static_cast<std::size_t>(n), {{0., 0.}});
+  }
+
+
+  template <int dim>
+  void
+  NonlocalGrid<dim>::add(const Point<dim> &x,
+                         const double      volume,
+                         const double      value)
+  {
+    // The box of nodes within R of x in each direction (at most
+    // 2 nodes_per_radius + 1 per direction) and, per direction, the
+    // squared distances over R^2 of its node lines. The weight of a node
+    // is then (1 - sum of its lines' terms)^2 where that is positive: no
+    // square root per node, and the innermost loop runs over contiguous
+    // nodes without a branch (a node of the box outside the ball adds an
+    // exact 0, the same sums as skipping it).
+    constexpr unsigned int     max_width = 2 * nodes_per_radius + 2;
+    const double               inverse_r2 = 1. / (radius * radius);
+    std::array<int, dim>       first;
+    std::array<unsigned int, dim> width;
+    std::array<std::array<double, max_width>, dim> term;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double s  = (x[d] - origin[d]) / spacing;
+        const int    lo = static_cast<int>(std::ceil(s - nodes_per_radius));
+        const int    hi = static_cast<int>(std::floor(s + nodes_per_radius));
+        first[d]        = lo;
+        width[d]        = static_cast<unsigned int>(hi - lo + 1);
+        AssertIndexRange(width[d], max_width + 1);
+        AssertIndexRange(hi, n_nodes_per_direction[d]);
+        Assert(lo >= 0, ExcInternalError());
+        for (unsigned int i = 0; i < width[d]; ++i)
+          {
+            const double dx = origin[d] + (lo + int(i)) * spacing - x[d];
+            term[d][i]      = dx * dx * inverse_r2;
+          }
+      }
+    const double wv = volume * value;
+    const auto   add_line = [&](const double rest, const std::size_t start) {
+      auto *node = &sums[start];
+      for (unsigned int i = 0; i < width[0]; ++i)
+        {
+          const double q = std::max(rest - term[0][i], 0.);
+          const double w = q * q;
+          node[i][0] += w * wv;
+          node[i][1] += w * volume;
+        }
+    };
+    const std::size_t n0 = n_nodes_per_direction[0];
+    if constexpr (dim == 2)
+      {
+        for (unsigned int j = 0; j < width[1]; ++j)
+          {
+            const double rest = 1. - term[1][j];
+            if (rest > 0)
+              add_line(rest, first[0] + n0 * (first[1] + j));
+          }
+      }
+    else
+      {
+        const std::size_t n1 = n_nodes_per_direction[1];
+        for (unsigned int k = 0; k < width[2]; ++k)
+          for (unsigned int j = 0; j < width[1]; ++j)
+            {
+              const double rest = 1. - term[2][k] - term[1][j];
+              if (rest > 0)
+                add_line(rest,
+                         first[0] + n0 * (first[1] + j + n1 * (first[2] + k)));
+            }
+      }
+  }
+
+
+  template <int dim>
+  void
+  NonlocalGrid<dim>::sum_over(const MPI_Comm comm)
+  {
+    if (Utilities::MPI::n_mpi_processes(comm) == 1)
+      return;
+    const ArrayView<double> values(sums.empty() ? nullptr : &sums[0][0],
+                                   2 * sums.size());
+    Utilities::MPI::sum(ArrayView<const double>(values.data(), values.size()),
+                        comm,
+                        values);
+  }
+
+
+  template <int dim>
+  double
+  NonlocalGrid<dim>::average(const Point<dim> &x) const
+  {
+    std::array<unsigned int, dim> base;
+    std::array<double, dim>       fraction;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        const double s = (x[d] - origin[d]) / spacing;
+        const double b = std::floor(s);
+        base[d]        = static_cast<unsigned int>(b);
+        fraction[d]    = s - b;
+      }
+    double numerator = 0, denominator = 0;
+    for (unsigned int corner = 0; corner < (1u << dim); ++corner)
+      {
+        double      phi   = 1;
+        std::size_t index = 0, stride = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            const unsigned int bit = (corner >> d) & 1u;
+            phi *= bit ? fraction[d] : 1. - fraction[d];
+            index += (base[d] + bit) * stride;
+            stride *= n_nodes_per_direction[d];
+          }
+        AssertIndexRange(index, sums.size());
+        numerator += phi * sums[index][0];
+        denominator += phi * sums[index][1];
+      }
+    Assert(denominator > 0,
+           ExcMessage("A non-local average at a point with no points near."));
+    return numerator / denominator;
+  }
+
+
+  template <int dim>
+  NonlocalAveraging<dim>::NonlocalAveraging(const MaterialLibrary &materials)
+    : materials(materials)
+  {}
+
+
+  template <int dim>
+  bool
+  NonlocalAveraging<dim>::active() const
+  {
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      if (materials[m].model->nonlocal_variable() != nullptr)
+        return true;
+    return false;
+  }
+
+
+  template <int dim>
+  void
+  NonlocalAveraging<dim>::update(
+    Particles::ParticleHandler<dim> &particle_handler,
+    const MPI_Comm                   comm)
+  {
+    using Layout = PropertyLayout<dim>;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      {
+        const auto *variable = materials[m].model->nonlocal_variable();
+        if (variable == nullptr)
+          continue;
+        const unsigned int local = Layout::state + variable->local_variable;
+        const unsigned int nonlocal =
+          Layout::state + variable->nonlocal_variable;
+        const double factor = variable->over_nonlocal_factor;
+
+        // The material's points (one walk over the ParticleHandler; the
+        // grid's passes then read these arrays), their box and largest
+        // value over all ranks: [-lower, upper, max] reduced by one max.
+        points.clear();
+        std::vector<double> extent(2 * dim + 1,
+                                   -std::numeric_limits<double>::max());
+        for (auto &point : particle_handler)
+          {
+            const auto props = point.get_properties();
+            if (static_cast<unsigned int>(props[Layout::material_id]) != m)
+              continue;
+            const Point<dim> x = point.get_location();
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                extent[d]       = std::max(extent[d], -x[d]);
+                extent[dim + d] = std::max(extent[dim + d], x[d]);
+              }
+            extent[2 * dim] = std::max(extent[2 * dim], props[local]);
+            points.push_back({x, props.data()});
+          }
+        Utilities::MPI::max(ArrayView<const double>(extent.data(), extent.size()),
+                            comm,
+                            ArrayView<double>(extent.data(), extent.size()));
+        // No point of the material, or none has a value yet (the
+        // variable only grows, so the regularised values are still the
+        // zeros they started with).
+        if (!(extent[2 * dim] > 0))
+          continue;
+        Point<dim> lower, upper;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower[d] = -extent[d];
+            upper[d] = extent[dim + d];
+          }
+        grid.reinit(lower,
+                    upper,
+                    variable->radius,
+                    "the state variable " + std::to_string(variable->local_variable) +
+                      " of material '" + materials[m].name + "' (radius " +
+                      std::to_string(variable->radius) + " m)");
+        for (const auto &point : points)
+          grid.add(point.location,
+                   point.properties[Layout::volume],
+                   point.properties[local]);
+        grid.sum_over(comm);
+        for (const auto &point : points)
+          {
+            double *const props   = point.properties;
+            const double  average = grid.average(point.location);
+            props[nonlocal] =
+              std::max(0., (1. - factor) * props[local] + factor * average);
+          }
+      }
+  }
+
+
+  template class NonlocalGrid<2>;
+  template class NonlocalGrid<3>;
+  template class NonlocalAveraging<2>;
+  template class NonlocalAveraging<3>;
+} // namespace MPM
