@@ -23,7 +23,12 @@
 //   the step (the dilation angle is taken at each step's final kappa, a
 //   backward Euler rule), and vanish where psi is constant;
 // - the residual stress ratio is reached; peak and residual are exact;
-// - a residual strength above the peak is an input error.
+// - a residual strength above the peak is an input error;
+// - with 'Nonlocal radius' (the driver's single point is a homogeneous
+//   body: kappa* = kappa) the return is explicit in kappa: the stress lies
+//   off its own surface by one step's softening, an error that halves with
+//   the step; the strains and the residual strength are as above. Both
+//   regularisations at once are an input error.
 
 #include <mpm/base/input_error.h>
 #include <mpm/materials/material_point_driver.h>
@@ -58,6 +63,10 @@ namespace
     /// Regularisation: 'Reference cell size' and the driver's 'Cell size'
     /// (0: not regularised).
     double reference_cell_size = 0, cell_size = 0;
+    /// 'Nonlocal radius' (0: local). The driver's point is a homogeneous
+    /// body, so the regularised strain is its own: the return is then
+    /// explicit in kappa (the strength of the step before).
+    double nonlocal_radius = 0;
 
     /// The softening strains are those of the reference cell: a point in
     /// a cell of size h softens as if its kappa were kappa h / h_ref.
@@ -94,6 +103,7 @@ namespace
       << "        set Residual plastic shear strain = " << c.kappa_residual
       << "\n"
       << "        set Reference cell size = " << c.reference_cell_size << "\n"
+      << "        set Nonlocal radius = " << c.nonlocal_radius << "\n"
       << "      end\n"
       << "    end\n"
       << "  end\n"
@@ -254,6 +264,55 @@ namespace
         previous = e;
       }
   }
+  /**
+   * A non-local softening on the driver's homogeneous point: the return is
+   * made at the strength of kappa_n, so a returned stress lies outside the
+   * surface of its own kappa by the softening of one step. Checked: that
+   * consistency error halves with the step (first order), the strains stay
+   * within the same bound as the implicit return, and the residual strength
+   * is reached.
+   */
+  void
+  report_explicit(const std::string &name, const Case &c)
+  {
+    std::cout << name << '\n';
+    Errors previous;
+    for (const unsigned int n : {750u, 1500u, 3000u})
+      {
+        const Errors e = run(c, n);
+        std::cout << "  steps " << n << ": plastic records "
+                  << e.plastic_records << ", consistency error "
+                  << e.consistency << ", axial strain error "
+                  << flush_to_zero(e.axial, 1e-12)
+                  << ", volumetric strain error "
+                  << flush_to_zero(e.volumetric, 1e-12) << '\n';
+        check(e.axial < 2e-4 && e.volumetric < 2e-4,
+              "strains within 2e-4 of the closed form");
+        if (n > 750)
+          {
+            const double ratio = previous.consistency / e.consistency;
+            std::cout << "    consistency error ratio to half the steps: "
+                      << std::setprecision(3) << ratio
+                      << std::setprecision(6) << '\n';
+            check(ratio > 1.8 && ratio < 2.2,
+                  "the explicit strength is first order in the step "
+                  "(ratio 1.8-2.2)");
+          }
+        if (n == 3000)
+          {
+            const double residual = axial_stress(c, c.kappa_residual) / c.p0;
+            std::cout << "  final kappa " << e.final_kappa
+                      << ", final sigma_a / p0 " << e.final_ratio
+                      << " (residual " << residual << ")\n";
+            check(e.consistency < 1e-2,
+                  "on 3000 steps within 1e-2 p0 of its own surface");
+            check(e.final_kappa > c.kappa_residual &&
+                    std::abs(e.final_ratio - residual) < 1e-10 * residual,
+                  "the residual strength is reached");
+          }
+        previous = e;
+      }
+  }
 } // namespace
 
 
@@ -291,6 +350,14 @@ main()
          "deg, c 20 -> 2 kPa over kappa 0 -> 0.025",
          regularised);
 
+  // The same with the non-local regularisation: on one point (a
+  // homogeneous body) kappa* = kappa, the strength of the step before.
+  Case nonlocal         = cohesion;
+  nonlocal.nonlocal_radius = 2;
+  report_explicit("non-local (R = 2 m) on a homogeneous point: friction 30 "
+                  "-> 20 deg, c 20 -> 2 kPa, psi 0",
+                  nonlocal);
+
   std::cout << "input errors\n";
   for (const auto &[entry, value] :
        std::vector<std::pair<std::string, std::string>>{
@@ -312,5 +379,25 @@ main()
         }
       check(thrown, entry + " = " + value + " is an input error naming it");
     }
+  {
+    // Two regularisations of the same softening.
+    Case both                = cohesion;
+    both.reference_cell_size = 0.5;
+    both.nonlocal_radius     = 2;
+    bool thrown              = false;
+    try
+      {
+        MaterialPointDriver::from_text(parameters(both, 10));
+      }
+    catch (const MPM::InputError &error)
+      {
+        const std::string what = error.what();
+        thrown = what.find("Nonlocal radius") != std::string::npos &&
+                 what.find("Reference cell size") != std::string::npos;
+      }
+    check(thrown,
+          "Reference cell size and Nonlocal radius both > 0 is an input "
+          "error naming both");
+  }
   return summary();
 }
