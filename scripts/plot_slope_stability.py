@@ -5,7 +5,11 @@ Usage: plot_slope_stability.py srm PNG CSV [CSV...]
          (the CSVs of scripts/strength_reduction.sh, labelled by file name)
        plot_slope_stability.py runout PNG OUTPUT_DIR:STEP[:TITLE] ...
          the points of those particle files (particles_STEP.*.vtu of the
-         run's output folder) coloured by their plastic shear strain"""
+         run's output folder) coloured by their plastic shear strain
+       plot_slope_stability.py band PNG OUTPUT_DIR:LABEL ...
+         shear stress against gamma and the plastic shear strain across
+         the layer from the reports of prm/shear_band_softening.prm runs
+         (a label containing "non-local" is drawn solid, others dashed)"""
 import base64
 import glob
 import re
@@ -94,6 +98,46 @@ def runout(png, specs):
     fig.savefig(png, dpi=110)
 
 
+def read_band_report(path):
+    """The stress curve and the plastic shear strain profile of a
+    'simple shear' report with Closed form = false."""
+    curve, profile, section = [], [], None
+    for line in open(path):
+        if line.startswith("## simple shear of a yielding layer"):
+            section = "curve"
+        elif line.startswith("## at gamma"):
+            section = "profile"
+        elif line.startswith("#") or not line.strip():
+            continue
+        elif section == "curve" and len(line.split()) == 4:
+            curve.append([float(v) for v in line.split()])
+        elif section == "profile" and len(line.split()) == 2:
+            profile.append([float(v) for v in line.split()])
+    return np.array(curve), np.array(profile)
+
+
+def band(png, specs):
+    """Shear stress against gamma and the plastic shear strain across the
+    layer for OUTPUT_DIR:LABEL pairs (prm/shear_band_softening.prm)."""
+    figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for spec in specs:
+        folder, label = spec.split(":", 1)
+        curve, profile = read_band_report(folder + "/report.txt")
+        style = "-" if "non-local" in label else "--"
+        line, = left.plot(curve[:, 0], curve[:, 1] / 1e3, style, label=label)
+        right.plot(profile[:, 1], profile[:, 0], style, color=line.get_color(), label=label)
+    left.set_xlabel("gamma = top displacement / H")
+    left.set_ylabel("mean shear stress (kPa)")
+    left.grid(alpha=0.3)
+    left.legend(fontsize=7)
+    right.set_xlabel("plastic shear strain at gamma = 0.1 (bin mean)")
+    right.set_ylabel("y (m)")
+    right.set_ylim(0.2, 0.9)
+    right.grid(alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(png, dpi=110)
+
+
 if __name__ == "__main__":
     mode, png = sys.argv[1:3]
-    {"srm": srm, "runout": runout}[mode](png, sys.argv[3:])
+    {"srm": srm, "runout": runout, "band": band}[mode](png, sys.argv[3:])

@@ -32,6 +32,16 @@ namespace MPM
      * speed): what the material-point driver checks for one point
      * (tests/material_point_simple_shear_*.prm), here through the grid,
      * the boundary conditions and moving points.
+     *
+     * With 'Closed form = false' the layer is not expected to stay elastic
+     * (a softening layer in which a shear band forms,
+     * prm/shear_band_softening.prm): the report lists the mean stress
+     * against gamma (the shear stress the layer carries, a stress-strain
+     * curve through the band) and, at the end, the profile across the
+     * layer of the first state variable (the plastic shear strain of a
+     * frictional model) in bins of 'Profile bin' and the band's
+     * equivalent width, the integral of that profile over its largest
+     * value.
      */
     template <int dim>
     class SimpleShear : public PostprocessorWithState<dim, SimpleShear<dim>>
@@ -57,6 +67,19 @@ namespace MPM
                           "The closed form to compare with: that of the "
                           "Jaumann rate or of none (fixed axes); the same "
                           "as 'Materials/Objective stress rate'.");
+        prm.declare_entry("Closed form",
+                          "true",
+                          Patterns::Bool(),
+                          "Whether the layer is linear elastic and the "
+                          "report compares it with the closed form; false "
+                          "for a layer that yields (a shear band): the "
+                          "report then lists its mean stress and the "
+                          "profile of its plastic shear strain.");
+        prm.declare_entry("Profile bin",
+                          "0.05",
+                          Patterns::Double(0),
+                          "Height in m of the bins of the plastic shear "
+                          "strain profile (Closed form = false).");
       }
 
       void
@@ -67,6 +90,13 @@ namespace MPM
         base    = prm.get_double("Base elevation");
         height  = prm.get_double("Layer height");
         jaumann = prm.get("Objective stress rate") == "jaumann";
+        closed_form = prm.get_bool("Closed form");
+        bin         = prm.get_double("Profile bin");
+        if (!closed_form)
+          check_input(bin > 0 && bin <= height,
+                      "Postprocess/simple shear/Profile bin = " +
+                        std::to_string(bin) +
+                        ": must lie in (0, Layer height].");
       }
 
       void
@@ -74,6 +104,19 @@ namespace MPM
       {
         const auto   mean  = mean_stress(simulator);
         const double gamma = rate * simulator.get_time();
+        if (!closed_form)
+          {
+            if (output_step)
+              {
+                std::ostringstream line;
+                line << std::setprecision(6) << std::setw(8) << gamma;
+                for (unsigned int k = 0; k < 3; ++k)
+                  line << std::setw(14) << mean[k];
+                line << '\n';
+                table += line.str();
+              }
+            return;
+          }
         const auto   exact = exact_stress(gamma);
         double       error = 0;
         for (unsigned int k = 0; k < 3; ++k)
@@ -96,6 +139,11 @@ namespace MPM
       {
         using Layout       = PropertyLayout<dim>;
         const double gamma = rate * simulator.get_time();
+        if (!closed_form)
+          {
+            write_band_report(simulator, gamma, report);
+            return;
+          }
         const auto   exact = exact_stress(gamma);
         const auto  &grid  = simulator.get_grid();
         // Largest deviations of single points at the end: stress / G and
@@ -150,6 +198,59 @@ namespace MPM
       }
 
     private:
+      /**
+       * The report of a yielding layer: its mean stress against gamma, the
+       * profile of the first state variable across it (volume-weighted
+       * bin means) and the equivalent width of that profile.
+       */
+      void
+      write_band_report(const Simulator<dim> &simulator,
+                        const double          gamma,
+                        std::ostream         &report) const
+      {
+        using Layout = PropertyLayout<dim>;
+        const unsigned int n_bins =
+          static_cast<unsigned int>(std::ceil(height / bin - 1e-9));
+        // Per bin: sum of V kappa, sum of V.
+        std::vector<double> sums(2 * n_bins, 0.);
+        if (simulator.get_materials().max_n_state_variables() > 0)
+          for (const auto &point : simulator.get_particle_handler())
+            {
+              const auto       props = point.get_properties();
+              const Point<dim> x =
+                simulator.get_grid().to_scene_frame(point.get_location());
+              const double     s = (x[1] - base) / bin;
+              if (!(s >= 0 && s < n_bins))
+                continue;
+              const unsigned int b = static_cast<unsigned int>(s);
+              sums[2 * b] += props[Layout::volume] * props[Layout::state];
+              sums[2 * b + 1] += props[Layout::volume];
+            }
+        Utilities::MPI::sum(sums, simulator.get_mpi_communicator(), sums);
+        std::vector<double> profile(n_bins, 0.);
+        double              largest = 0, integral = 0;
+        for (unsigned int b = 0; b < n_bins; ++b)
+          {
+            if (sums[2 * b + 1] > 0)
+              profile[b] = sums[2 * b] / sums[2 * b + 1];
+            largest = std::max(largest, profile[b]);
+            integral += profile[b] * bin;
+          }
+        report << "## simple shear of a yielding layer: volume-mean stress "
+                  "(Pa) against gamma = top displacement / H\n"
+               << "#  gamma       sigma_xy      sigma_xx      sigma_yy\n"
+               << table << "## at gamma = " << gamma
+               << ": first state variable (plastic shear strain) across "
+                  "the layer, volume-weighted means in bins of "
+               << bin << " m\n# y centre (m)  value\n";
+        for (unsigned int b = 0; b < n_bins; ++b)
+          report << std::setw(10) << base + (b + 0.5) * bin << std::setw(14)
+                 << profile[b] << '\n';
+        report << "largest bin value: " << largest
+               << "\nequivalent band width (integral / largest, m): "
+               << (largest > 0 ? integral / largest : 0.) << '\n';
+      }
+
       /// (sigma_xy, sigma_xx, sigma_yy) of Dienes' closed form.
       std::array<double, 3>
       exact_stress(const double gamma) const
@@ -185,6 +286,8 @@ namespace MPM
 
       double      rate = 0.1, modulus = 1e6, base = 0, height = 1;
       bool        jaumann        = true;
+      bool        closed_form    = true;
+      double      bin            = 0.05;
       double      max_mean_error = 0;
       std::string table;
     };
