@@ -122,9 +122,16 @@ main(int argc, char **argv)
 
   const unsigned int n_state = model.n_state_variables();
   const unsigned int width   = std::max(1u, n_state);
-  const auto         update  = [&](const SymmetricTensor<2, 3> &increment,
+  // A non-local model's regularised variable: each point stands for a
+  // homogeneous body, so it is the point's own (as in the material-point
+  // driver); the averaging over neighbours is the MPM step's cost, not the
+  // model's.
+  const auto *const nonlocal = model.nonlocal_variable();
+  const auto        update   = [&](const SymmetricTensor<2, 3> &increment,
                             SymmetricTensor<2, 3>       &stress,
                             double                      *state) {
+    if (nonlocal != nullptr)
+      state[nonlocal->nonlocal_variable] = state[nonlocal->local_variable];
     model.update_stress(increment,
                         stress,
                         ArrayView<double>(state, n_state),
