@@ -2,6 +2,7 @@
 
 #include <mpm/material_points/nonlocal_averaging.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/parallel/thread_chunks.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,80 @@ namespace MPM
                          const double      volume,
                          const double      value)
   {
+    add_rows(x, volume, value, 0, n_nodes_per_direction[dim - 1]);
+  }
+
+
+  template <int dim>
+  unsigned int
+  NonlocalGrid<dim>::row_of(const Point<dim> &x) const
+  {
+    return static_cast<unsigned int>(
+      std::floor((x[dim - 1] - origin[dim - 1]) / spacing));
+  }
+
+
+  template <int dim>
+  void
+  NonlocalGrid<dim>::add_points(const std::vector<Point<dim>> &x,
+                                const std::vector<double>     &volume,
+                                const std::vector<double>     &value)
+  {
+    AssertDimension(x.size(), volume.size());
+    AssertDimension(x.size(), value.size());
+    // The points by their row of nodes along the last direction (a stable
+    // counting sort): a node then receives its contributions in the order
+    // (row of the point, index), whichever slab of rows a thread adds, so
+    // that the sums do not depend on the number of threads.
+    const unsigned int n_rows = n_nodes_per_direction[dim - 1];
+    row_start.assign(n_rows + 1, 0);
+    for (const auto &p : x)
+      ++row_start[row_of(p) + 1];
+    for (unsigned int r = 0; r < n_rows; ++r)
+      row_start[r + 1] += row_start[r];
+    order.resize(x.size());
+    {
+      std::vector<unsigned int> next(row_start.begin(), row_start.end() - 1);
+      for (unsigned int i = 0; i < x.size(); ++i)
+        order[next[row_of(x[i])]++] = i;
+    }
+    // Slabs of rows, each added by one thread: the points whose rows lie
+    // within nodes_per_radius of the slab, restricted to its rows.
+    const unsigned int slab = std::max(
+      2 * nodes_per_radius + 1,
+      (n_rows + 2 * MultithreadInfo::n_threads() - 1) /
+        (2 * MultithreadInfo::n_threads()));
+    const unsigned int n_points = x.size();
+    const unsigned int chunk_size =
+      n_points < 512 ? std::max(n_rows, 1u) : slab;
+    for_each_chunk(n_rows,
+                   chunk_size,
+                   [&](const unsigned int,
+                       const unsigned int begin,
+                       const unsigned int end) {
+                     const unsigned int first_row =
+                       begin > nodes_per_radius ? begin - nodes_per_radius : 0;
+                     const unsigned int last_row =
+                       std::min(n_rows, end + nodes_per_radius + 1);
+                     for (unsigned int k = row_start[first_row];
+                          k < row_start[last_row];
+                          ++k)
+                       {
+                         const unsigned int i = order[k];
+                         add_rows(x[i], volume[i], value[i], begin, end);
+                       }
+                   });
+  }
+
+
+  template <int dim>
+  void
+  NonlocalGrid<dim>::add_rows(const Point<dim>  &x,
+                              const double       volume,
+                              const double       value,
+                              const unsigned int row_begin,
+                              const unsigned int row_end)
+  {
     // The box of nodes within R of x in each direction (at most
     // 2 nodes_per_radius + 1 per direction) and, per direction, the
     // squared distances over R^2 of its node lines. The weight of a node
@@ -89,10 +164,16 @@ namespace MPM
           node[i][1] += w * volume;
         }
     };
+    // Only the rows of the last direction in [row_begin, row_end).
+    const int          last_first = first[dim - 1];
+    const unsigned int outer_begin =
+      std::max(0, int(row_begin) - last_first);
+    const unsigned int outer_end = static_cast<unsigned int>(std::max(
+      0, std::min(int(width[dim - 1]), int(row_end) - last_first)));
     const std::size_t n0 = n_nodes_per_direction[0];
     if constexpr (dim == 2)
       {
-        for (unsigned int j = 0; j < width[1]; ++j)
+        for (unsigned int j = outer_begin; j < outer_end; ++j)
           {
             const double rest = 1. - term[1][j];
             if (rest > 0)
@@ -102,7 +183,7 @@ namespace MPM
     else
       {
         const std::size_t n1 = n_nodes_per_direction[1];
-        for (unsigned int k = 0; k < width[2]; ++k)
+        for (unsigned int k = outer_begin; k < outer_end; ++k)
           for (unsigned int j = 0; j < width[1]; ++j)
             {
               const double rest = 1. - term[2][k] - term[1][j];
@@ -201,6 +282,9 @@ namespace MPM
         // grid's passes then read these arrays), their box and largest
         // value over all ranks: [-lower, upper, max] reduced by one max.
         points.clear();
+        locations.clear();
+        volumes.clear();
+        values.clear();
         std::vector<double> extent(2 * dim + 1,
                                    -std::numeric_limits<double>::max());
         for (auto &point : particle_handler)
@@ -215,7 +299,10 @@ namespace MPM
                 extent[dim + d] = std::max(extent[dim + d], x[d]);
               }
             extent[2 * dim] = std::max(extent[2 * dim], props[local]);
-            points.push_back({x, props.data()});
+            points.push_back(props.data());
+            locations.push_back(x);
+            volumes.push_back(props[Layout::volume]);
+            values.push_back(props[local]);
           }
         Utilities::MPI::max(ArrayView<const double>(extent.data(), extent.size()),
                             comm,
@@ -237,18 +324,20 @@ namespace MPM
                     "the state variable " + std::to_string(variable->local_variable) +
                       " of material '" + materials[m].name + "' (radius " +
                       std::to_string(variable->radius) + " m)");
-        for (const auto &point : points)
-          grid.add(point.location,
-                   point.properties[Layout::volume],
-                   point.properties[local]);
+        grid.add_points(locations, volumes, values);
         grid.sum_over(comm);
-        for (const auto &point : points)
-          {
-            double *const props   = point.properties;
-            const double  average = grid.average(point.location);
-            props[nonlocal] =
-              std::max(0., (1. - factor) * props[local] + factor * average);
-          }
+        const unsigned int n = points.size();
+        for_each_chunk(n,
+                       chunk_size_for(n),
+                       [&](const unsigned int,
+                           const unsigned int begin,
+                           const unsigned int end) {
+                         for (unsigned int i = begin; i < end; ++i)
+                           points[i][nonlocal] = std::max(
+                             0.,
+                             (1. - factor) * values[i] +
+                               factor * grid.average(locations[i]));
+                       });
       }
   }
 

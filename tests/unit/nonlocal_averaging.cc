@@ -12,7 +12,12 @@
 // - the grid depends on the radius alone: points moved by a multiple of
 //   the grid spacing have the same averages (to round-off), so the
 //   operator does not follow the box the points fill;
-// - a point far from all others (more than R) keeps its own value.
+// - a point far from all others (more than R) keeps its own value;
+// - add_points() (the sums by rows of nodes, a slab of rows per thread)
+//   gives the same averages on one and two threads, bit for bit, and those
+//   of add() point by point to round-off.
+
+#include <deal.II/base/multithread_info.h>
 
 #include <mpm/material_points/nonlocal_averaging.h>
 
@@ -187,6 +192,39 @@ namespace
     check(change < 1e-12, "the averages do not depend on the box");
     check(std::abs(far - 5) < 1e-14, "a lone point keeps its value");
   }
+  /// add_points() (row order, slabs on the threads) against add() point
+  /// by point, on one and on two threads.
+  void
+  check_threads()
+  {
+    const double radius = 0.3;
+    auto         cloud  = make_cloud<2>(0.02, 2, 4);
+    for (unsigned int p = 0; p < cloud.x.size(); ++p)
+      cloud.value[p] = std::abs(cloud.x[p][1] - 1) < 0.1 ? 1. : 0.01;
+    const auto one_by_one = grid_averages(cloud, radius);
+    std::vector<std::vector<double>> by_threads;
+    for (const unsigned int threads : {1u, 2u})
+      {
+        MultithreadInfo::set_thread_limit(threads);
+        MPM::NonlocalGrid<2> grid;
+        grid.reinit(Point<2>(0, 0), Point<2>(2, 2), radius, "the test field");
+        grid.add_points(cloud.x, cloud.volume, cloud.value);
+        std::vector<double> averages;
+        for (const auto &x : cloud.x)
+          averages.push_back(grid.average(x));
+        by_threads.push_back(averages);
+      }
+    MultithreadInfo::set_thread_limit();
+    const double round_off = max_difference(by_threads[0], one_by_one);
+    std::cout << "  " << cloud.x.size()
+              << " points added by rows on 1 and 2 threads: "
+              << (by_threads[0] == by_threads[1] ? "identical" : "DIFFERENT")
+              << ", against one by one " << flush_to_zero(round_off, 1e-13)
+              << '\n';
+    check(by_threads[0] == by_threads[1],
+          "the same averages on 1 and 2 threads, bit for bit");
+    check(round_off < 1e-13, "the same sums as one by one, to round-off");
+  }
 } // namespace
 
 int
@@ -199,5 +237,7 @@ main()
   check_against_pair_sum();
   std::cout << "Independence of the box:\n";
   check_translation();
+  std::cout << "Threads:\n";
+  check_threads();
   return summary();
 }

@@ -38,7 +38,9 @@ namespace MPM
    *
    * On several MPI ranks the grid covers the material's points of all
    * ranks and its sums are added over the ranks (then the averages differ
-   * from one rank's by round-off, the order of the sums).
+   * from one rank's by round-off, the order of the sums). On several
+   * threads add_points() gives each thread a slab of node rows; the sums
+   * are the same on any number of threads.
    */
   template <int dim>
   class NonlocalGrid
@@ -63,6 +65,20 @@ namespace MPM
     void
     add(const Point<dim> &x, const double volume, const double value);
 
+    /**
+     * Add the points @p x with volumes @p volume and values @p value, on
+     * the threads of this rank: each thread adds a slab of node rows (along
+     * the last direction) from the points near it. Every node receives its
+     * contributions in one order, that of the points' rows and then of
+     * their indices, whatever the number of threads, so the sums are the
+     * same bit for bit on any number (and differ from adding the points
+     * one by one with add() in their index order by round-off).
+     */
+    void
+    add_points(const std::vector<Point<dim>> &x,
+               const std::vector<double>     &volume,
+               const std::vector<double>     &value);
+
     /// Sum the grid's values over the ranks of @p comm (nothing on one).
     void
     sum_over(const MPI_Comm comm);
@@ -81,12 +97,28 @@ namespace MPM
     }
 
   private:
+    /// add() restricted to the node rows [@p row_begin, @p row_end) of the
+    /// last direction.
+    void
+    add_rows(const Point<dim>  &x,
+             const double       volume,
+             const double       value,
+             const unsigned int row_begin,
+             const unsigned int row_end);
+
+    /// The row of nodes (last direction) at or below @p x.
+    unsigned int
+    row_of(const Point<dim> &x) const;
+
     double                      radius  = 0;
     double                      spacing = 0;
     Point<dim>                  origin;
     std::array<unsigned int, dim> n_nodes_per_direction{};
     /// Per node: sum of w V v and of w V.
     std::vector<std::array<double, 2>> sums;
+    /// add_points(): the first index into order of each row's points, and
+    /// the points sorted by row.
+    std::vector<unsigned int> row_start, order;
   };
 
 
@@ -121,13 +153,11 @@ namespace MPM
   private:
     const MaterialLibrary &materials;
     NonlocalGrid<dim>      grid;
-    /// One material's points in this step: position and properties.
-    struct PointData
-    {
-      Point<dim> location;
-      double    *properties;
-    };
-    std::vector<PointData> points;
+    /// One material's points in this step: their properties, positions,
+    /// volumes and local values.
+    std::vector<double *>   points;
+    std::vector<Point<dim>> locations;
+    std::vector<double>     volumes, values;
   };
 } // namespace MPM
 
