@@ -36,7 +36,8 @@ namespace MPM
       }
     if (n > 1e8)
       throw std::runtime_error(
-        "The non-local average of " + what + " would need a grid of " +
+        "The non-local average of material '" + what + "' (radius " +
+        std::to_string(radius) + " m) would need a grid of " +
         std::to_string(n) + " nodes (spacing " + std::to_string(spacing) +
         " m, a quarter of the radius, over the material's points): the "
         "radius is too small for the extent of the material. Increase the "
@@ -318,12 +319,7 @@ namespace MPM
             lower[d] = -extent[d];
             upper[d] = extent[dim + d];
           }
-        grid.reinit(lower,
-                    upper,
-                    variable->radius,
-                    "the state variable " + std::to_string(variable->local_variable) +
-                      " of material '" + materials[m].name + "' (radius " +
-                      std::to_string(variable->radius) + " m)");
+        grid.reinit(lower, upper, variable->radius, materials[m].name);
         grid.add_points(locations, volumes, values);
         grid.sum_over(comm);
         const unsigned int n = points.size();

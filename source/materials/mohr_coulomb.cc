@@ -682,7 +682,8 @@ namespace MPM
     MohrCoulomb::return_with_softening(std::array<double, 3> &s,
                                        double &plastic_shear_increment,
                                        const double kappa,
-                                       const double kappa_scale) const
+                                       const double kappa_scale,
+                                       const bool   fixed_strength) const
     {
       // The softening range of this point (scaled by the cell size, or as
       // given: kappa_scale = 1 divides exactly).
@@ -709,9 +710,10 @@ namespace MPM
           return 0;
         }
 
-      // Elastic, or plastic and still before the peak strain: done.
+      // Elastic, plastic and still before the peak strain, or at a fixed
+      // strength (non-local): done.
       unsigned int bits = return_at(kappa);
-      if (bits == 0 || kappa + increment <= softening_start)
+      if (fixed_strength || bits == 0 || kappa + increment <= softening_start)
         {
           plastic_shear_increment = increment;
           return bits;
@@ -828,23 +830,13 @@ namespace MPM
             // Non-local: at the fixed strength of the regularised strain
             // (explicit in it; the class documentation).
             if (nonlocal_state)
-              {
-                if (state[1] > softening_start &&
-                    is_elastic(strength_at(state[1], softening_start, softening_end), s))
-                  {
-                    plastic_shear_increment = 0;
-                    return 0u;
-                  }
-                return return_at_kappa(s,
-                                       plastic_shear_increment,
-                                       state[1],
-                                       softening_start,
-                                       softening_end);
-              }
+              return return_with_softening(
+                s, plastic_shear_increment, state[1], 1., true);
             return return_with_softening(s,
                                          plastic_shear_increment,
                                          state[0],
-                                         kappa_scale);
+                                         kappa_scale,
+                                         false);
           }
         else
           return return_principal_inline<true>(peak,

@@ -52,8 +52,8 @@ namespace MPM
     /**
      * A grid for radius @p radius covering the points within the box
      * [@p lower, @p upper] (all ranks' points), zeroed. @p what names the
-     * averaged variable and its radius for the error thrown when the grid
-     * would be too large (more than 1e8 nodes).
+     * material in the error thrown when the grid would be too large (more
+     * than 1e8 nodes).
      */
     void
     reinit(const Point<dim>  &lower,

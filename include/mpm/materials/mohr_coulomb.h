@@ -205,13 +205,16 @@ namespace MPM
        * The return of a softening material at @p kappa (see the class
        * documentation): implicit in kappa. The softening range is divided
        * by @p kappa_scale (the cell size over the reference size; 1 when
-       * not regularised).
+       * not regularised). With @p fixed_strength (the non-local
+       * regularisation, @p kappa the regularised strain) the return is made
+       * at the strength of @p kappa alone, without the search.
        */
       unsigned int
       return_with_softening(std::array<double, 3> &s,
                             double                &plastic_shear_increment,
                             const double           kappa,
-                            const double           kappa_scale) const;
+                            const double           kappa_scale,
+                            const bool             fixed_strength) const;
 
       /**
        * The return from the trial stress @p s at the fixed strength of
