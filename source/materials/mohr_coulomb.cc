@@ -1,6 +1,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/materials/frictional_strength.h>
 #include <mpm/materials/mohr_coulomb.h>
+#include <mpm/materials/principal_stresses.h>
 
 #include <algorithm>
 #include <bitset>
@@ -939,26 +940,10 @@ namespace MPM
               return;
             }
         }
-      // The QL decomposition rather than the
-      // closed-form eigenvalues(): the latter loses half the digits when
-      // two principal stresses coincide, which is exactly where the edge
-      // returns put them, and a returned stress would then look slightly
-      // outside the surface.
-#ifdef MPM_FUZZ_BUILD
-      // The fuzz build (scripts/fuzz.sh) compiles this library with clang,
-      // which mangles deal.II's eigenvectors<3>() differently from the gcc
-      // that built deal.II; the fuzz targets only read input, never reach
-      // here, and must link.
-      AssertThrow(false,
-                  ExcMessage("3D Mohr-Coulomb is not available in the fuzz "
-                             "build."));
-      const std::array<std::pair<double, Tensor<1, 3>>, 3> eigen{};
-#else
-      const auto eigen =
-        eigenvectors(trial,
-                     SymmetricTensorEigenvectorMethod::ql_implicit_shifts);
-#endif
-      s = {{eigen[0].first, eigen[1].first, eigen[2].first}};
+      // Principal values to full accuracy also where two coincide, as the
+      // edge returns put them (principal_stresses.h).
+      const auto principal = principal_values_and_directions(trial);
+      s = {{principal[0].first, principal[1].first, principal[2].first}};
 
       double plastic_shear_increment;
       if (return_mapping(s, plastic_shear_increment) == 0)
@@ -967,10 +952,13 @@ namespace MPM
         return;
       }
 
-      stress = 0;
-      for (unsigned int i = 0; i < 3; ++i)
-        stress +=
-          s[i] * symmetrize(outer_product(eigen[i].second, eigen[i].second));
+      // sum_i s_i v_i v_i^T, the returned stress (coaxial with the trial).
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = a; b < 3; ++b)
+          stress[a][b] =
+            s[0] * principal[0].second[a] * principal[0].second[b] +
+            s[1] * principal[1].second[a] * principal[1].second[b] +
+            s[2] * principal[2].second[a] * principal[2].second[b];
       state[0] += plastic_shear_increment;
     }
 
