@@ -2,11 +2,39 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace MPM
 {
   namespace MaterialModels
   {
+    namespace
+    {
+      /// The binary exponent of @p x (x > 0), within [-1000, 1000]: read
+      /// from its bits (ilogb() is a library call in the hot path).
+      inline int
+      clamped_exponent(const double x)
+      {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        const int exponent = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
+        return std::max(-1000, std::min(1000, exponent));
+      }
+
+      /// 2^e for e in [-1000, 1000], built from its bits.
+      inline double
+      power_of_two(const int e)
+      {
+        const std::uint64_t bits = static_cast<std::uint64_t>(e + 1023)
+                                   << 52;
+        double x;
+        std::memcpy(&x, &bits, sizeof x);
+        return x;
+      }
+    } // namespace
+
+
     std::array<std::pair<double, Tensor<1, 3>>, 3>
     principal_values_and_directions(const SymmetricTensor<2, 3> &A)
     {
@@ -14,8 +42,7 @@ namespace MPM
       const double a01 = A[0][1], a02 = A[0][2], a12 = A[1][2];
       std::array<std::pair<double, Tensor<1, 3>>, 3> result;
 
-      const double off_diagonal = a01 * a01 + a02 * a02 + a12 * a12;
-      if (off_diagonal == 0.)
+      if (a01 == 0. && a02 == 0. && a12 == 0.)
         {
           for (unsigned int i = 0; i < 3; ++i)
             {
@@ -26,16 +53,39 @@ namespace MPM
         }
       else
         {
-          // The deviator d = A - m I: its eigenvalues are 2 r cos(phi_k)
-          // with r^2 = J2 / 3 and cos(3 phi) = det(d) / (2 r^3).
-          const double m  = (a00 + a11 + a22) / 3.;
-          const double d0 = a00 - m, d1 = a11 - m, d2 = a22 - m;
+          // The deviator D = A - m I, scaled by a power of two to entries of
+          // order one (exactly: the scaling rounds nothing): its principal
+          // values are the tensor's less m, unscaled, and working on D
+          // rather than A keeps the mean stress's round-off out of the
+          // directions; the scaling keeps the products below (up to the
+          // fourth power of D's entries) from underflowing or overflowing
+          // whatever the units.
+          const double m = (a00 + a11 + a22) / 3.;
+          const double largest = std::max({std::abs(a00 - m),
+                                           std::abs(a11 - m),
+                                           std::abs(a22 - m),
+                                           std::abs(a01),
+                                           std::abs(a02),
+                                           std::abs(a12)});
+          const int    exponent      = clamped_exponent(largest);
+          const double scale         = power_of_two(exponent);
+          const double inverse_scale = power_of_two(-exponent);
+          const double d0 = (a00 - m) * inverse_scale,
+                       d1 = (a11 - m) * inverse_scale,
+                       d2 = (a22 - m) * inverse_scale;
+          const double d01 = a01 * inverse_scale, d02 = a02 * inverse_scale,
+                       d12 = a12 * inverse_scale;
+
+          // D's principal values are 2 r cos(phi_k), with r^2 = J2(D) / 3
+          // and cos(3 phi) = det(D) / (2 r^3).
           const double r2 =
-            (d0 * d0 + d1 * d1 + d2 * d2 + 2. * off_diagonal) / 6.;
-          const double r = std::sqrt(r2);
-          const double det_d = d0 * (d1 * d2 - a12 * a12) -
-                               a01 * (a01 * d2 - a12 * a02) +
-                               a02 * (a01 * a12 - d1 * a02);
+            (d0 * d0 + d1 * d1 + d2 * d2 +
+             2. * (d01 * d01 + d02 * d02 + d12 * d12)) /
+            6.;
+          const double r     = std::sqrt(r2);
+          const double det_d = d0 * (d1 * d2 - d12 * d12) -
+                               d01 * (d01 * d2 - d12 * d02) +
+                               d02 * (d01 * d12 - d1 * d02);
           const double cos_3phi =
             std::max(-1., std::min(1., det_d / (2. * r2 * r)));
           // cos_3phi >= 0: the two smaller values are the closer pair, the
@@ -44,20 +94,20 @@ namespace MPM
           // cosine is flat in phi, so acos()'s lost digits do not reach s.
           const double phi = std::acos(cos_3phi) / 3.;
           const double s =
-            m + 2. * r *
-                  std::cos(phi + (cos_3phi >= 0. ? 0. : 2.0943951023931954923));
+            2. * r *
+            std::cos(phi + (cos_3phi >= 0. ? 0. : 2.0943951023931954923));
 
-          // Its direction: the longest cross product of two rows of A - s I.
-          const double b00 = a00 - s, b11 = a11 - s, b22 = a22 - s;
-          const double c01[3] = {a01 * a12 - a02 * b11,
-                                 a02 * a01 - b00 * a12,
-                                 b00 * b11 - a01 * a01};
-          const double c02[3] = {a01 * b22 - a02 * a12,
-                                 a02 * a02 - b00 * b22,
-                                 b00 * a12 - a01 * a02};
-          const double c12[3] = {b11 * b22 - a12 * a12,
-                                 a12 * a02 - a01 * b22,
-                                 a01 * a12 - b11 * a02};
+          // Its direction: the longest cross product of two rows of D - s I.
+          const double b00 = d0 - s, b11 = d1 - s, b22 = d2 - s;
+          const double c01[3] = {d01 * d12 - d02 * b11,
+                                 d02 * d01 - b00 * d12,
+                                 b00 * b11 - d01 * d01};
+          const double c02[3] = {d01 * b22 - d02 * d12,
+                                 d02 * d02 - b00 * b22,
+                                 b00 * d12 - d01 * d02};
+          const double c12[3] = {b11 * b22 - d12 * d12,
+                                 d12 * d02 - d01 * b22,
+                                 d01 * d12 - b11 * d02};
           const double n01 = c01[0] * c01[0] + c01[1] * c01[1] + c01[2] * c01[2];
           const double n02 = c02[0] * c02[0] + c02[1] * c02[1] + c02[2] * c02[2];
           const double n12 = c12[0] * c12[0] + c12[1] * c12[1] + c12[2] * c12[2];
@@ -108,16 +158,16 @@ namespace MPM
                                v[2] * u[0] - v[0] * u[2],
                                v[0] * u[1] - v[1] * u[0]};
 
-          // A in the plane: the 2 x 2 tensor [p00 p01; p01 p11] in (u, w).
-          const double Au[3] = {a00 * u[0] + a01 * u[1] + a02 * u[2],
-                                a01 * u[0] + a11 * u[1] + a12 * u[2],
-                                a02 * u[0] + a12 * u[1] + a22 * u[2]};
-          const double Aw[3] = {a00 * w[0] + a01 * w[1] + a02 * w[2],
-                                a01 * w[0] + a11 * w[1] + a12 * w[2],
-                                a02 * w[0] + a12 * w[1] + a22 * w[2]};
-          const double p00 = u[0] * Au[0] + u[1] * Au[1] + u[2] * Au[2];
-          const double p11 = w[0] * Aw[0] + w[1] * Aw[1] + w[2] * Aw[2];
-          const double p01 = u[0] * Aw[0] + u[1] * Aw[1] + u[2] * Aw[2];
+          // D in the plane: the 2 x 2 tensor [p00 p01; p01 p11] in (u, w).
+          const double Du[3] = {d0 * u[0] + d01 * u[1] + d02 * u[2],
+                                d01 * u[0] + d1 * u[1] + d12 * u[2],
+                                d02 * u[0] + d12 * u[1] + d2 * u[2]};
+          const double Dw[3] = {d0 * w[0] + d01 * w[1] + d02 * w[2],
+                                d01 * w[0] + d1 * w[1] + d12 * w[2],
+                                d02 * w[0] + d12 * w[1] + d2 * w[2]};
+          const double p00 = u[0] * Du[0] + u[1] * Du[1] + u[2] * Du[2];
+          const double p11 = w[0] * Dw[0] + w[1] * Dw[1] + w[2] * Dw[2];
+          const double p01 = u[0] * Dw[0] + u[1] * Dw[1] + u[2] * Dw[2];
 
           // One Jacobi rotation (Golub and Van Loan, sym.schur2), the
           // smaller of the two angles that diagonalise it.
@@ -132,9 +182,9 @@ namespace MPM
               cosine = 1. / std::sqrt(1. + t * t);
               sine   = t * cosine;
             }
-          result[0].first = s;
-          result[1].first = p00 - t * p01;
-          result[2].first = p11 + t * p01;
+          result[0].first = m + scale * s;
+          result[1].first = m + scale * (p00 - t * p01);
+          result[2].first = m + scale * (p11 + t * p01);
           for (unsigned int i = 0; i < 3; ++i)
             {
               result[0].second[i] = v[i];

@@ -33,13 +33,16 @@ namespace MPM
      * those two only to the square root of the machine epsilon, and a
      * returned stress would then look slightly off the surface.
      *
-     * How: the trigonometric formula gives one principal value to full
+     * How: on the deviator, scaled exactly by a power of two to entries
+     * of order one (no underflow in the fourth powers below, whatever the
+     * units; the mean stress's round-off kept out of the directions), the
+     * trigonometric formula gives one principal value to full
      * accuracy, the one farthest from the middle value (the largest where
      * the two smaller ones are closer together, else the smallest): at
      * that value the formula's cosine has zero slope in the angle that
      * loses the digits. Its direction is the longest cross product of two
-     * rows of A - s I (the gap to the other two values is at least half
-     * the spread of all three). The other two come from the 2 x 2 tensor A
+     * rows of D - s I (the gap to the other two values is at least half
+     * the spread of all three). The other two come from the 2 x 2 tensor D
      * restricted to the plane normal to that direction, diagonalised by
      * one exact Jacobi rotation, accurate however close they are. A
      * diagonal tensor is returned as it is, with the coordinate axes.
