@@ -119,6 +119,9 @@ namespace MPM
     /// add_points(): the first index into order of each row's points, and
     /// the points sorted by row.
     std::vector<unsigned int> row_start, order;
+    /// add_points(): the first row of each slab of rows that one thread
+    /// adds, and the end.
+    std::vector<unsigned int> slab_start;
   };
 
 
