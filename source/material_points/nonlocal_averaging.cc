@@ -147,9 +147,8 @@ namespace MPM
     // 2 nodes_per_radius + 1 per direction) and, per direction, the
     // squared distances over R^2 of its node lines. The weight of a node
     // is then (1 - sum of its lines' terms)^2 where that is positive: no
-    // square root per node, and the innermost loop runs over contiguous
-    // nodes without a branch (a node of the box outside the ball adds an
-    // exact 0, the same sums as skipping it).
+    // square root per node, and the innermost loop runs without a branch
+    // over the contiguous nodes of a line that lie inside the ball.
     constexpr unsigned int     max_width = 2 * nodes_per_radius + 2;
     const double               inverse_r2 = 1. / (radius * radius);
     std::array<int, dim>       first;
@@ -172,11 +171,21 @@ namespace MPM
           }
       }
     const double wv = volume * value;
-    const auto   add_line = [&](const double rest, const std::size_t start) {
+    // A line of nodes along the first direction: only the nodes inside the
+    // ball (term < rest; term is convex along the line, so they are a
+    // contiguous range, found from both ends). The nodes outside it would
+    // add an exact 0: skipping them leaves the same sums, and the ball is
+    // about 60 % of the box in 2D, 45 % in 3D.
+    const auto add_line = [&](const double rest, const std::size_t start) {
+      unsigned int begin = 0, end = width[0];
+      while (begin < end && term[0][begin] >= rest)
+        ++begin;
+      while (end > begin && term[0][end - 1] >= rest)
+        --end;
       auto *node = &sums[start];
-      for (unsigned int i = 0; i < width[0]; ++i)
+      for (unsigned int i = begin; i < end; ++i)
         {
-          const double q = std::max(rest - term[0][i], 0.);
+          const double q = rest - term[0][i];
           const double w = q * q;
           node[i][0] += w * wv;
           node[i][1] += w * volume;
