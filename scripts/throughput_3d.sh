@@ -53,6 +53,17 @@ median() {
   echo "$lines" | awk -v n="$(echo "$lines" | wc -l)" 'NR == int((n + 1) / 2)'
 }
 
+# run_mpm PRM NAME THREADS [mpm arguments...]: one run of prm/PRM without
+# output files, its log in $out/NAME.log.
+run_mpm() {
+  local prm="$1" name="$2" threads="$3"
+  shift 3
+  "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/$prm" --threads "$threads" "$@" \
+    --set "Output/Write particles=false" \
+    --set "Output/Write mesh=false" \
+    --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1
+}
+
 if [ "$cases" != block ]; then
   csv="$MPM_ROOT/doc/throughput_3d.csv"
   echo "refinements,points_per_cell,cells,threads,steps,points,setup_wall_s,step_wall_s,particle_steps_per_s,$sections_header" > "$csv"
@@ -61,14 +72,11 @@ if [ "$cases" != block ]; then
     for threads in ${MPM_THREADS:-1}; do
       for r in $(seq "${MPM_REPEATS:-3}"); do
         name="landslide-r$refinements-p$ppc-t$threads-$r"
-        "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/landslide_valley_3d.prm" --threads "$threads" \
+        run_mpm landslide_valley_3d.prm "$name" "$threads" \
           --set "Mesh/Global refinements=$refinements" \
           --set "Material points/slide/Points per cell=$ppc" \
           --set "Time stepping/End time=$end_time" \
-          --set "Output/Write particles=false" \
-          --set "Output/Write mesh=false" \
-          --set "Output/Write point file=false" \
-          --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1
+          --set "Output/Write point file=false"
         cells=$(grep -o '3D, [0-9]* cells' "$out/$name.log" | awk '{print $2}')
         summarise "$out/$name.log" "$refinements,$ppc,$cells,$threads"
       done | median 9 | tee -a "$csv"
@@ -90,16 +98,13 @@ for model in "linear elastic" "mohr coulomb"; do
     for threads in ${MPM_THREADS:-1}; do
       for r in $(seq "${MPM_REPEATS:-3}"); do
         name="block-3d-$model-$points-t$threads-$r"
-        "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/throughput_3d.prm" --threads "$threads" \
+        run_mpm throughput_3d.prm "$name" "$threads" \
           --set "Mesh/Generator arguments={$n, $n, $n} : 0, 0, 0 : 1, 1, 1 : true" \
           --set "Material points/block/Box=0, 0, 0 : 1, 1, 1" \
           --set "Materials/block/Model=$model" \
           --set "Time stepping/Update scheme=$scheme" \
           --set "Transfer/FLIP fraction=$flip" \
-          --set "Time stepping/End time=$end_time" \
-          --set "Output/Write particles=false" \
-          --set "Output/Write mesh=false" \
-          --set "Output/Directory=$out/$name" > "$out/$name.log" 2>&1
+          --set "Time stepping/End time=$end_time"
         summarise "$out/$name.log" "$model,$(( n * n * n )),$threads"
       done | median 8 | tee -a "$block_csv"
     done
