@@ -915,8 +915,8 @@ namespace MPM
       // 2 p + sqrt(J2 / 3) and sigma_1 <= p + 2 sqrt(J2 / 3), so if these
       // bounds leave the Mohr-Coulomb plane and the tension cutoff below
       // zero by more than round-off, every surface is (the same answer,
-      // stress = trial, as the test on the principal values below; the
-      // eigenvectors were two thirds of a 3D Mohr-Coulomb step).
+      // stress = trial, as the test on the principal values below, whose
+      // decomposition costs more than the rest of a 3D update).
       if constexpr (!with_softening)
         {
           const double p  = (trial[0][0] + trial[1][1] + trial[2][2]) / 3.;
