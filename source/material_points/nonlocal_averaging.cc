@@ -17,7 +17,7 @@ namespace MPM
   NonlocalGrid<dim>::reinit(const Point<dim>  &lower,
                             const Point<dim>  &upper,
                             const double       radius,
-                            const std::string &what)
+                            const std::string &material_name)
   {
     Assert(radius > 0, ExcMessage("The non-local radius must be positive."));
     this->radius = radius;
@@ -37,7 +37,7 @@ namespace MPM
       }
     if (n > 1e8)
       throw std::runtime_error(
-        "The non-local average of material '" + what + "' (radius " +
+        "The non-local average of material '" + material_name + "' (radius " +
         std::to_string(radius) + " m) would need a grid of " +
         std::to_string(n) + " nodes (spacing " + std::to_string(spacing) +
         " m, a quarter of the radius, over the material's points): the "

@@ -51,15 +51,15 @@ namespace MPM
 
     /**
      * A grid for radius @p radius covering the points within the box
-     * [@p lower, @p upper] (all ranks' points), zeroed. @p what names the
-     * material in the error thrown when the grid would be too large (more
+     * [@p lower, @p upper] (all ranks' points), zeroed. @p material_name
+     * is named in the error thrown when the grid would be too large (more
      * than 1e8 nodes).
      */
     void
     reinit(const Point<dim>  &lower,
            const Point<dim>  &upper,
            const double       radius,
-           const std::string &what);
+           const std::string &material_name);
 
     /// Add a point at @p x with volume @p volume and value @p value.
     void
