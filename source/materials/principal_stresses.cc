@@ -40,6 +40,7 @@ namespace MPM
     {
       const double a00 = A[0][0], a11 = A[1][1], a22 = A[2][2];
       const double a01 = A[0][1], a02 = A[0][2], a12 = A[1][2];
+      // (Value-initialised: zero values and directions.)
       std::array<std::pair<double, Tensor<1, 3>>, 3> result;
 
       if (a01 == 0. && a02 == 0. && a12 == 0.)
@@ -47,7 +48,6 @@ namespace MPM
           for (unsigned int i = 0; i < 3; ++i)
             {
               result[i].first     = A[i][i];
-              result[i].second    = Tensor<1, 3>();
               result[i].second[i] = 1.;
             }
         }
