@@ -41,7 +41,8 @@ namespace MPM
     const double shortest_edge = this->finish_active_cells();
     // Their shape functions, cell by cell on the available threads, with
     // the cell's geometry as the shape functions take it: its bilinear map
-    // in 2D, its vertices in 3D.
+    // in 2D; in 3D its affine map if it is a parallelepiped (a constant
+    // Jacobian), its vertices otherwise.
     for_each_chunk(
       this->active_cells.size(),
       this->cell_chunk_size,
@@ -57,6 +58,9 @@ namespace MPM
                 if constexpr (dim == 2)
                   this->shape_functions[k].reinit(
                     *cell.map, point->get_reference_location());
+                else if (cell.parallelepiped)
+                  this->shape_functions[k].reinit(
+                    *cell.parallelepiped, point->get_reference_location());
                 else
                   this->shape_functions[k].reinit(
                     *cell.vertices, point->get_reference_location());

@@ -108,6 +108,8 @@ namespace MPM
     shortest_edge = std::min(shortest_edge, active.size);
     if constexpr (dim == 2)
       active.map = &grid.bilinear_map(cell_index);
+    else if (grid.parallelepiped_map(cell_index).is_affine())
+      active.parallelepiped = &grid.parallelepiped_map(cell_index);
     active_cells.push_back(active);
   }
 

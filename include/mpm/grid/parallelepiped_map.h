@@ -61,6 +61,18 @@ namespace MPM
       return affine;
     }
 
+    /**
+     * J^{-1}, the inverse of the constant Jacobian dx/dxi (only if
+     * is_affine()): the real gradients of the cell's shape functions are
+     * J^{-T} times their reference gradients at every point of the cell
+     * (Q1ShapeFunctions::reinit()).
+     */
+    const Tensor<2, 3> &
+    jacobian_inverse() const
+    {
+      return inverse_jacobian;
+    }
+
     /// The reference coordinates of @p x (only if is_affine()).
     Point<3>
     inverse(const Point<3> &x) const

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <mpm/grid/bilinear_cell_map.h>
+#include <mpm/grid/parallelepiped_map.h>
 
 #include <array>
 
@@ -118,6 +119,35 @@ namespace MPM
     }
 
     /**
+     * Evaluate at reference point @p xi of the parallelepiped whose
+     * affine map is @p map (3D; map.is_affine()): the real gradients from
+     * the cell's constant inverse Jacobian, without a Jacobian and its
+     * inverse per point. The same numbers as the reinit() from the
+     * vertices up to round-off (the trilinear Jacobian at xi sums eight
+     * vertex terms; this one is the cell's three edge vectors).
+     */
+    void
+    reinit(const ParallelepipedMap &map, const Point<dim> &xi)
+    {
+      if constexpr (dim == 3)
+        {
+          Assert(map.is_affine(), ExcInternalError());
+          std::array<Tensor<1, dim>, n_vertices> reference_gradient;
+          set_values_and_reference_gradients(xi, reference_gradient);
+          const Tensor<2, dim> inverse_transpose =
+            transpose(map.jacobian_inverse());
+          for (unsigned int i = 0; i < n_vertices; ++i)
+            gradient[i] = inverse_transpose * reference_gradient[i];
+        }
+      else
+        {
+          (void)map;
+          (void)xi;
+          Assert(false, ExcMessage("ParallelepipedMap is 3D only."));
+        }
+    }
+
+    /**
      * Evaluate at reference point @p xi of the cell with @p vertices.
      */
     void
@@ -138,6 +168,25 @@ namespace MPM
           return;
         }
       std::array<Tensor<1, dim>, n_vertices> reference_gradient;
+      set_values_and_reference_gradients(xi, reference_gradient);
+      // Jacobian J_ab = dx_a / dxi_b; real gradients are J^{-T} times the
+      // reference gradients.
+      Tensor<2, dim> jacobian;
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        jacobian += outer_product(vertices[i], reference_gradient[i]);
+      const Tensor<2, dim> inverse_transpose = transpose(invert(jacobian));
+      for (unsigned int i = 0; i < n_vertices; ++i)
+        gradient[i] = inverse_transpose * reference_gradient[i];
+    }
+
+  private:
+    /// The values at @p xi into value, and the reference gradients (any
+    /// dim; the 2D reinit()s use their scalar form).
+    void
+    set_values_and_reference_gradients(
+      const Point<dim>                       &xi,
+      std::array<Tensor<1, dim>, n_vertices> &reference_gradient)
+    {
       for (unsigned int i = 0; i < n_vertices; ++i)
         {
           // Vertex i sits at reference coordinate d = bit d of i.
@@ -161,14 +210,6 @@ namespace MPM
               reference_gradient[i][d] = g;
             }
         }
-      // Jacobian J_ab = dx_a / dxi_b; real gradients are J^{-T} times the
-      // reference gradients.
-      Tensor<2, dim> jacobian;
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        jacobian += outer_product(vertices[i], reference_gradient[i]);
-      const Tensor<2, dim> inverse_transpose = transpose(invert(jacobian));
-      for (unsigned int i = 0; i < n_vertices; ++i)
-        gradient[i] = inverse_transpose * reference_gradient[i];
     }
   };
 } // namespace MPM

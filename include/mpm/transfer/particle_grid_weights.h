@@ -258,6 +258,9 @@ namespace MPM
       const std::array<Point<dim>, n_vertices> *vertices = nullptr;
       /// The cell's bilinear map (2D; nullptr in 3D).
       const BilinearCellMap *map = nullptr;
+      /// The cell's affine map if it is a parallelepiped (3D; nullptr
+      /// otherwise and in 2D).
+      const ParallelepipedMap *parallelepiped = nullptr;
       /// BackgroundGrid::cell_size() of the cell.
       double size = 0;
       /// The index of the cell's first entry in shape_functions (its
