@@ -79,8 +79,9 @@ namespace MPM
       bool identity = true;
       /// 2D: cos and sin of the angle about z.
       double c = 1, s = 0;
-      /// 3D: the rotation matrix.
-      Tensor<2, 3> Q;
+      /// 3D: the rotation matrix, by rows (plain numbers: rotate() reads
+      /// them one by one).
+      double Q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     };
 
     template <int dim>
@@ -100,15 +101,22 @@ namespace MPM
         }
       else
         {
-          Tensor<2, 3> H;
+          // Q = I + 2 / (1 + |w|^2) (H + H^2) for H = dt W / 4 with axial
+          // vector w (H v = w x v), where H^2 = w w^T - |w|^2 I: the
+          // Cayley transform (I - H)^{-1} (I + H), in scalars.
+          const double f   = 0.25 * dt;
+          const double h01 = f * (grad_v[0][1] - grad_v[1][0]);
+          const double h02 = f * (grad_v[0][2] - grad_v[2][0]);
+          const double h12 = f * (grad_v[1][2] - grad_v[2][1]);
+          const double w[3]  = {-h12, h02, -h01};
+          const double h2    = h01 * h01 + h02 * h02 + h12 * h12;
+          const double scale = 2. / (1. + h2);
+          const double H[3][3] = {{0, h01, h02}, {-h01, 0, h12}, {-h02, -h12, 0}};
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = 0; j < 3; ++j)
-              H[i][j] = 0.25 * dt * (grad_v[i][j] - grad_v[j][i]);
-          const double h2 = H[0][1] * H[0][1] + H[0][2] * H[0][2] +
-                            H[1][2] * H[1][2];
-          R.Q = (2. / (1. + h2)) * (H + H * H);
-          for (unsigned int i = 0; i < 3; ++i)
-            R.Q[i][i] += 1.;
+              R.Q[i][j] =
+                (i == j ? 1. : 0.) +
+                scale * (H[i][j] + w[i] * w[j] - (i == j ? h2 : 0.));
         }
       return R;
     }
@@ -135,11 +143,21 @@ namespace MPM
         }
       else
         {
-          const Tensor<2, 3> sigma   = stress;
-          const Tensor<2, 3> rotated = R.Q * sigma * transpose(R.Q);
+          // Q sigma Q^T for symmetric sigma: A = Q sigma, then only the
+          // upper triangle of A Q^T (45 products instead of 54 and the
+          // symmetrisation of a full product), entry by entry.
+          const auto  &Q = R.Q;
+          const double s[3][3] = {{stress[0][0], stress[0][1], stress[0][2]},
+                                  {stress[0][1], stress[1][1], stress[1][2]},
+                                  {stress[0][2], stress[1][2], stress[2][2]}};
+          double       a[3][3];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int k = 0; k < 3; ++k)
+              a[i][k] = Q[i][0] * s[0][k] + Q[i][1] * s[1][k] + Q[i][2] * s[2][k];
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = i; j < 3; ++j)
-              stress[i][j] = 0.5 * (rotated[i][j] + rotated[j][i]);
+              stress[i][j] =
+                a[i][0] * Q[j][0] + a[i][1] * Q[j][1] + a[i][2] * Q[j][2];
         }
     }
 
