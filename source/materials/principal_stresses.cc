@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 
 namespace MPM
 {
@@ -35,67 +36,122 @@ namespace MPM
     } // namespace
 
 
-    std::array<std::pair<double, Tensor<1, 3>>, 3>
-    principal_values_and_directions(const SymmetricTensor<2, 3> &A)
+    inline DEAL_II_ALWAYS_INLINE void
+    PrincipalStresses::compute_first_stage(const SymmetricTensor<2, 3> &A,
+                                           FirstStage                  &st)
     {
       const double a00 = A[0][0], a11 = A[1][1], a22 = A[2][2];
       const double a01 = A[0][1], a02 = A[0][2], a12 = A[1][2];
+      st.diagonal = a01 == 0. && a02 == 0. && a12 == 0.;
+      if (st.diagonal)
+        {
+          st.diagonal_entries = {{a00, a11, a22}};
+          return;
+        }
+      // The deviator D = A - m I, scaled by a power of two to entries of
+      // order one (exactly: the scaling rounds nothing): its principal
+      // values are the tensor's less m, unscaled, and working on D rather
+      // than A keeps the mean stress's round-off out of the directions;
+      // the scaling keeps the products below (up to the fourth power of
+      // D's entries) from underflowing or overflowing whatever the units.
+      const double m       = (a00 + a11 + a22) / 3.;
+      const double largest = std::max({std::abs(a00 - m),
+                                       std::abs(a11 - m),
+                                       std::abs(a22 - m),
+                                       std::abs(a01),
+                                       std::abs(a02),
+                                       std::abs(a12)});
+      const int    exponent      = clamped_exponent(largest);
+      const double inverse_scale = power_of_two(-exponent);
+      const double d0 = (a00 - m) * inverse_scale,
+                   d1 = (a11 - m) * inverse_scale,
+                   d2 = (a22 - m) * inverse_scale;
+      const double d01 = a01 * inverse_scale, d02 = a02 * inverse_scale,
+                   d12 = a12 * inverse_scale;
+
+      // D's principal values are 2 r cos(phi_k), with r^2 = J2(D) / 3 and
+      // cos(3 phi) = det(D) / (2 r^3).
+      const double r2 =
+        (d0 * d0 + d1 * d1 + d2 * d2 + 2. * (d01 * d01 + d02 * d02 + d12 * d12)) /
+        6.;
+      const double r     = std::sqrt(r2);
+      const double det_d = d0 * (d1 * d2 - d12 * d12) -
+                           d01 * (d01 * d2 - d12 * d02) +
+                           d02 * (d01 * d12 - d1 * d02);
+      const double cos_3phi =
+        std::max(-1., std::min(1., det_d / (2. * r2 * r)));
+      // cos_3phi >= 0: the two smaller values are the closer pair, the
+      // largest (phi in [0, pi/6]) is the isolated one; else the smallest
+      // (psi = phi + 2 pi/3 in [5 pi/6, pi]). Near the ends the cosine is
+      // flat in phi, so acos()'s lost digits do not reach s.
+      st.largest_isolated = cos_3phi >= 0.;
+      const double phi    = std::acos(cos_3phi) / 3.;
+      st.cos_psi =
+        std::cos(phi + (st.largest_isolated ? 0. : 2.0943951023931954923));
+      st.s     = 2. * r * st.cos_psi;
+      st.m     = m;
+      st.scale = power_of_two(exponent);
+      st.r     = r;
+      st.d0    = d0;
+      st.d1    = d1;
+      st.d2    = d2;
+      st.d01   = d01;
+      st.d02   = d02;
+      st.d12   = d12;
+    }
+
+
+    PrincipalStresses::PrincipalStresses(const SymmetricTensor<2, 3> &A)
+    {
+      compute_first_stage(A, stage);
+      if (stage.diagonal)
+        {
+          values = stage.diagonal_entries;
+          std::sort(values.begin(), values.end(), std::greater<double>());
+          bound = 0;
+          return;
+        }
+      // The two values other than the isolated one, cos(psi -+ 2 pi/3)
+      // from cos(psi) and sin(psi) >= 0: those that lose digits where they
+      // coincide.
+      const double cos_psi = stage.cos_psi;
+      const double sin_psi = std::sqrt(std::max(0., 1. - cos_psi * cos_psi));
+      const double half_root_3 = 0.86602540378443864676;
+      const double two_r_scale = 2. * stage.r * stage.scale;
+      const double upper       = half_root_3 * sin_psi - 0.5 * cos_psi;
+      const double lower       = -half_root_3 * sin_psi - 0.5 * cos_psi;
+      const double m           = stage.m;
+      if (stage.largest_isolated)
+        values = {{m + two_r_scale * cos_psi,
+                   m + two_r_scale * upper,
+                   m + two_r_scale * lower}};
+      else
+        values = {{m + two_r_scale * upper,
+                   m + two_r_scale * lower,
+                   m + two_r_scale * cos_psi}};
+      bound = 1e-6 * (std::abs(m) + two_r_scale);
+    }
+
+
+    inline DEAL_II_ALWAYS_INLINE std::array<std::pair<double, Tensor<1, 3>>, 3>
+    PrincipalStresses::second_stage(const FirstStage &st)
+    {
       // (Value-initialised: zero values and directions.)
       std::array<std::pair<double, Tensor<1, 3>>, 3> result;
 
-      if (a01 == 0. && a02 == 0. && a12 == 0.)
+      if (st.diagonal)
         {
           for (unsigned int i = 0; i < 3; ++i)
             {
-              result[i].first     = A[i][i];
+              result[i].first     = st.diagonal_entries[i];
               result[i].second[i] = 1.;
             }
         }
       else
         {
-          // The deviator D = A - m I, scaled by a power of two to entries of
-          // order one (exactly: the scaling rounds nothing): its principal
-          // values are the tensor's less m, unscaled, and working on D
-          // rather than A keeps the mean stress's round-off out of the
-          // directions; the scaling keeps the products below (up to the
-          // fourth power of D's entries) from underflowing or overflowing
-          // whatever the units.
-          const double m = (a00 + a11 + a22) / 3.;
-          const double largest = std::max({std::abs(a00 - m),
-                                           std::abs(a11 - m),
-                                           std::abs(a22 - m),
-                                           std::abs(a01),
-                                           std::abs(a02),
-                                           std::abs(a12)});
-          const int    exponent      = clamped_exponent(largest);
-          const double scale         = power_of_two(exponent);
-          const double inverse_scale = power_of_two(-exponent);
-          const double d0 = (a00 - m) * inverse_scale,
-                       d1 = (a11 - m) * inverse_scale,
-                       d2 = (a22 - m) * inverse_scale;
-          const double d01 = a01 * inverse_scale, d02 = a02 * inverse_scale,
-                       d12 = a12 * inverse_scale;
-
-          // D's principal values are 2 r cos(phi_k), with r^2 = J2(D) / 3
-          // and cos(3 phi) = det(D) / (2 r^3).
-          const double r2 =
-            (d0 * d0 + d1 * d1 + d2 * d2 +
-             2. * (d01 * d01 + d02 * d02 + d12 * d12)) /
-            6.;
-          const double r     = std::sqrt(r2);
-          const double det_d = d0 * (d1 * d2 - d12 * d12) -
-                               d01 * (d01 * d2 - d12 * d02) +
-                               d02 * (d01 * d12 - d1 * d02);
-          const double cos_3phi =
-            std::max(-1., std::min(1., det_d / (2. * r2 * r)));
-          // cos_3phi >= 0: the two smaller values are the closer pair, the
-          // largest (phi in [0, pi/6]) is the isolated one; else the
-          // smallest (phi + 2 pi/3 in [5 pi/6, pi]). Near the ends the
-          // cosine is flat in phi, so acos()'s lost digits do not reach s.
-          const double phi = std::acos(cos_3phi) / 3.;
-          const double s =
-            2. * r *
-            std::cos(phi + (cos_3phi >= 0. ? 0. : 2.0943951023931954923));
+          const double m = st.m, scale = st.scale, s = st.s;
+          const double d0 = st.d0, d1 = st.d1, d2 = st.d2;
+          const double d01 = st.d01, d02 = st.d02, d12 = st.d12;
 
           // Its direction: the longest cross product of two rows of D - s I.
           const double b00 = d0 - s, b11 = d1 - s, b22 = d2 - s;
@@ -200,6 +256,22 @@ namespace MPM
       if (result[0].first < result[1].first)
         std::swap(result[0], result[1]);
       return result;
+    }
+
+
+    std::array<std::pair<double, Tensor<1, 3>>, 3>
+    PrincipalStresses::values_and_directions() const
+    {
+      return second_stage(stage);
+    }
+
+
+    std::array<std::pair<double, Tensor<1, 3>>, 3>
+    principal_values_and_directions(const SymmetricTensor<2, 3> &A)
+    {
+      PrincipalStresses::FirstStage stage;
+      PrincipalStresses::compute_first_stage(A, stage);
+      return PrincipalStresses::second_stage(stage);
     }
   } // namespace MaterialModels
 } // namespace MPM

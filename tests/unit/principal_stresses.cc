@@ -1,4 +1,4 @@
-// Unit test of principal_values_and_directions() (principal_stresses.h),
+// Unit test of principal_values_and_directions() and PrincipalStresses (principal_stresses.h),
 // the eigen-decomposition of a 3D stress that MohrCoulomb's return mapping
 // uses: tensors with known principal values, then families of random
 // tensors, including the hard ones (two principal values equal or nearly
@@ -30,6 +30,7 @@
 using namespace dealii;
 using namespace UnitTest;
 using MPM::MaterialModels::principal_values_and_directions;
+using MPM::MaterialModels::PrincipalStresses;
 
 namespace
 {
@@ -292,6 +293,33 @@ main()
               mine.reconstruction <= 16 * eps,
             "residual, orthonormality, reconstruction all within 16 "
             "epsilons");
+      // The first stage of PrincipalStresses: its approximate values within
+      // a hundredth of its error bound of the accurate ones (exact where
+      // the bound is zero), descending.
+      double worst_share = 0;
+      bool   approximate_descending = true;
+      for (const auto &A : family.tensors)
+        {
+          const PrincipalStresses stages(A);
+          const auto             &approximate = stages.approximate_values();
+          const auto              accurate    = stages.values_and_directions();
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const double difference =
+                std::abs(approximate[i] - accurate[i].first);
+              worst_share = std::max(
+                worst_share,
+                stages.error_bound() > 0 ?
+                  difference / stages.error_bound() :
+                  (difference == 0 ? 0. : std::numeric_limits<double>::infinity()));
+            }
+          approximate_descending = approximate_descending &&
+                                   approximate[0] >= approximate[1] &&
+                                   approximate[1] >= approximate[2];
+        }
+      check(approximate_descending && worst_share <= 0.01,
+            "approximate values descending and within a hundredth of their "
+            "error bound");
       if (family.compare_with_ql)
         {
           // QL's figures, on the same tensors: no better than these by
