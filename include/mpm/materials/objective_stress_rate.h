@@ -101,9 +101,10 @@ namespace MPM
         }
       else
         {
-          // Q = I + 2 / (1 + |w|^2) (H + H^2) for H = dt W / 4 with axial
-          // vector w (H v = w x v), where H^2 = w w^T - |w|^2 I: the
-          // Cayley transform (I - H)^{-1} (I + H), in scalars.
+          // Q = (I - H)^{-1} (I + H) for H = dt W / 2 (the spin W =
+          // (L - L^T) / 2, so H = dt (L - L^T) / 4), in closed form:
+          // Q = I + 2 / (1 + |w|^2) (H + H^2) with H's axial vector w
+          // (H v = w x v), where H^2 = w w^T - |w|^2 I; in scalars.
           const double f   = 0.25 * dt;
           const double h01 = f * (grad_v[0][1] - grad_v[1][0]);
           const double h02 = f * (grad_v[0][2] - grad_v[2][0]);
