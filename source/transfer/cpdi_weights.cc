@@ -22,6 +22,17 @@ namespace MPM
 {
   namespace
   {
+    /// The outcome of CpdiWeights' search of a corner by its direction:
+    /// found in a cell, in none of the patch, or left to the ordered
+    /// search.
+    enum class Search
+    {
+      found,
+      outside,
+      undecided
+    };
+
+
     /// Whether @p x lies in the bounding box of @p vertices enlarged by
     /// @p margin times its size: the cheap rejection before an inverse
     /// map (most candidate cells of a corner do not contain it, and the
@@ -206,6 +217,8 @@ namespace MPM
                              {});
     corner_slot_of_cell.assign(triangulation.n_active_cells(),
                                numbers::invalid_unsigned_int);
+    cell_patch_directions.assign(triangulation.n_active_cells(), {});
+    cell_patch_regular.assign(triangulation.n_active_cells(), false);
     // The hints name cells of these patches by position and index.
     corner_hints.clear();
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -242,6 +255,56 @@ namespace MPM
             }
           if (periodic)
             cell_patch_images[index] = images;
+
+          // Where the patch's cells lie relative to this one, if its map is
+          // affine (cell_patch_directions).
+          const auto &grid = this->context.grid;
+          bool        affine;
+          if constexpr (dim == 2)
+            affine = grid.bilinear_map(index).is_parallelogram();
+          else
+            affine = grid.parallelepiped_map(index).is_affine();
+          if (!affine)
+            continue;
+          const auto reference_coordinates = [&](const Point<dim> &y) {
+            if constexpr (dim == 2)
+              return grid.bilinear_map(index).inverse(y, false).xi;
+            else
+              return grid.parallelepiped_map(index).inverse(y);
+          };
+          constexpr double margin     = 1e-10;
+          auto            &directions = cell_patch_directions[index];
+          bool             regular    = true;
+          directions.resize(patch.size());
+          for (unsigned int i = 0; i < patch.size(); ++i)
+            {
+              Point<dim> lo, hi;
+              for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell;
+                   ++v)
+                {
+                  Point<dim> y = grid.cell_vertices(patch[i])[v];
+                  if (periodic)
+                    y += image_shifts[images[i]];
+                  const Point<dim> eta = reference_coordinates(y);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    {
+                      lo[d] = v == 0 ? eta[d] : std::min(lo[d], eta[d]);
+                      hi[d] = v == 0 ? eta[d] : std::max(hi[d], eta[d]);
+                    }
+                }
+              unsigned int code  = 0;
+              bool         mixed = false;
+              for (unsigned int d = 0, stride = 1; d < dim; ++d, stride *= 3)
+                if (lo[d] >= 1 - margin)
+                  code += 2 * stride;
+                else if (lo[d] >= -margin && hi[d] <= 1 + margin)
+                  code += stride;
+                else if (!(hi[d] <= margin))
+                  mixed = true;
+              regular       = regular && !mixed;
+              directions[i] = mixed ? mixed_direction : code;
+            }
+          cell_patch_regular[index] = regular;
         }
   }
 
@@ -380,6 +443,11 @@ namespace MPM
                 !grid.parallelepiped_map(cell->active_cell_index()).is_affine();
             std::array<unsigned int, n_corners> last_found;
             last_found.fill(0);
+            // Where the patch's cells lie (an affine cell only).
+            const auto &directions =
+              cell_patch_directions[cell->active_cell_index()];
+            const bool regular_patch =
+              cell_patch_regular[cell->active_cell_index()];
             auto point = this->point_cell_first_point[pc];
             for (; p < p_end; ++point, ++p)
               {
@@ -445,6 +513,58 @@ namespace MPM
                     y += shift_of(i);
                   parallelepiped = false;
                   return true;
+                };
+                // The search of corner @p c through the cells of its direction
+                // (cell_patch_directions), in a cell whose map is affine. It
+                // decides only where the ordered search below would give the
+                // same: a corner strictly inside a cell (farther than
+                // corner_hint_margin from its faces in reference coordinates)
+                // lies in no other cell of the patch, and in a regular patch
+                // a corner that is clearly in one direction (its reference
+                // coordinates in the point's cell that far from 0 and 1) lies
+                // in no cell of another direction. Otherwise (a corner on or
+                // next to a face, which may belong to several cells: the
+                // first the ordered search tries) it is undecided.
+                const auto directed_search = [&](const unsigned int c) {
+                  constexpr double margin = corner_hint_margin;
+                  if (cell_contains<dim>(*vertices_of(0),
+                                         map_of(0),
+                                         parallelepiped_of(0),
+                                         in_cell_frame(0, x[c]),
+                                         xi[c]))
+                    {
+                      if (!inside_unit_cell(xi[c], -margin))
+                        return Search::undecided;
+                      found_in(c, 0);
+                      last_found[c] = 0;
+                      return Search::found;
+                    }
+                  // The corner's direction from the cell (as the codes of
+                  // cell_patch_directions).
+                  unsigned int direction = 0;
+                  for (unsigned int d = 0, stride = 1; d < dim;
+                       ++d, stride *= 3)
+                    if (xi[c][d] > 1 + margin)
+                      direction += 2 * stride;
+                    else if (xi[c][d] > margin && xi[c][d] < 1 - margin)
+                      direction += stride;
+                    else if (!(xi[c][d] < -margin))
+                      return Search::undecided;
+                  for (unsigned int i = 1; i < patch.size(); ++i)
+                    if (directions[i] == direction &&
+                        cell_contains<dim>(*vertices_of(i),
+                                           map_of(i),
+                                           parallelepiped_of(i),
+                                           in_cell_frame(i, x[c]),
+                                           xi[c]))
+                      {
+                        if (!inside_unit_cell(xi[c], -margin))
+                          return Search::undecided;
+                        found_in(c, i);
+                        last_found[c] = i;
+                        return Search::found;
+                      }
+                  return regular_patch ? Search::outside : Search::undecided;
                 };
                 // Whether every corner of the domain scaled by s about x_p
                 // lies in the patch (and where).
@@ -525,7 +645,14 @@ namespace MPM
                         look_up_patch();
                       bool found = false;
                       const unsigned int n_patch = patch.size();
-                      for (unsigned int j = 0; j <= n_patch; ++j)
+                      const Search search =
+                        directions.empty() ? Search::undecided :
+                                             directed_search(c);
+                      if (search == Search::found)
+                        continue;
+                      for (unsigned int j = 0;
+                           search == Search::undecided && j <= n_patch;
+                           ++j)
                         {
                           // The previous point's cell of this corner first.
                           const unsigned int i =

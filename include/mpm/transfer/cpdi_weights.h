@@ -161,6 +161,25 @@ namespace MPM
     std::vector<Tensor<1, dim>> image_shifts;
 
     /**
+     * For each locally owned cell whose map is affine (a parallelogram or
+     * parallelepiped; else empty), where each cell of its patch lies
+     * relative to it: in the cell's reference coordinates, the patch
+     * cell's bounding box lies below (k_d = 0), within (1) or above (2)
+     * [0, 1] in each coordinate d (to 1e-10), coded as sum_d k_d 3^d, or
+     * mixed_direction if it straddles 0 or 1 (a coarser neighbour, a
+     * distorted one). A corner outside the cell goes first to the cells
+     * of its own direction (the corner's reference coordinates in the
+     * point's cell tell it): usually one, the neighbour it crossed into,
+     * instead of the ordered search through up to 27 cells.
+     */
+    std::vector<std::vector<unsigned char>> cell_patch_directions;
+    /// Whether every cell of the patch has a direction (not mixed): then
+    /// a corner in a direction where no cell holds it lies outside the
+    /// patch (by index as cell_patch_directions).
+    std::vector<bool> cell_patch_regular;
+    static constexpr unsigned char mixed_direction = 255;
+
+    /**
      * Where each point's corners lay in the last step: its cell then (the
      * active_cell_index()) and each corner's cell as a position in that
      * cell's patch. A point's corners move by a fraction of a cell per step,
