@@ -11,7 +11,9 @@
 # - The 3D block (prm/throughput_3d.prm: a cube of 2 x 2 x 2 points per
 #   hexahedron on a fixed floor, the mesh as large as the block), linear
 #   elastic (USF, FLIP) and Mohr-Coulomb (MUSL, PIC) with about 1e4 and 1e5
-#   points, max(20, 1.2e7 / points) steps.
+#   points, max(20, 1.2e7 / points) steps; then linear elastic with CPDI
+#   weights ("linear elastic (cpdi)": hexahedral domains, whose corners on
+#   the mesh's walls are moved onto them).
 # The rate counts only the steps (mpm's 'Done' line), not the set-up, whose
 # wall time is listed too. Each case runs MPM_REPEATS times (default 3) and
 # the run with the median rate is kept; MPM_THREADS lists the threads per
@@ -87,7 +89,10 @@ fi
 
 block_csv="$MPM_ROOT/doc/throughput_3d_block.csv"
 echo "model,cells,threads,steps,points,setup_wall_s,step_wall_s,particle_steps_per_s,$sections_header" > "$block_csv"
-for model in "linear elastic" "mohr coulomb"; do
+for case in "linear elastic:linear" "mohr coulomb:linear" "linear elastic:cpdi"; do
+  model="${case%:*}" weights="${case#*:}"
+  label="$model"
+  [ "$weights" = linear ] || label="$model ($weights)"
   for n in 12 23; do
     scheme=USF; flip=1
     if [ "$model" = "mohr coulomb" ]; then scheme=MUSL; flip=0; fi
@@ -97,15 +102,16 @@ for model in "linear elastic" "mohr coulomb"; do
     end_time=$(awk -v n="$n" -v s="$steps" 'BEGIN { print s * 0.5 / n / 86.49 * 0.999 }')
     for threads in ${MPM_THREADS:-1}; do
       for r in $(seq "${MPM_REPEATS:-3}"); do
-        name="block-3d-$model-$points-t$threads-$r"
+        name="block-3d-$model-$weights-$points-t$threads-$r"
         run_mpm throughput_3d.prm "$name" "$threads" \
           --set "Mesh/Generator arguments={$n, $n, $n} : 0, 0, 0 : 1, 1, 1 : true" \
           --set "Material points/block/Box=0, 0, 0 : 1, 1, 1" \
           --set "Materials/block/Model=$model" \
+          --set "Transfer/Particle-grid weights=$weights" \
           --set "Time stepping/Update scheme=$scheme" \
           --set "Transfer/FLIP fraction=$flip" \
           --set "Time stepping/End time=$end_time"
-        summarise "$out/$name.log" "$model,$(( n * n * n )),$threads"
+        summarise "$out/$name.log" "$label,$(( n * n * n )),$threads"
       done | median 8 | tee -a "$block_csv"
     done
   done
