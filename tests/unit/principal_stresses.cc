@@ -1,5 +1,6 @@
-// Unit test of principal_values_and_directions() and PrincipalStresses (principal_stresses.h),
-// the eigen-decomposition of a 3D stress that MohrCoulomb's return mapping
+// Unit test of principal_values_and_directions() and PrincipalStresses
+// (principal_stresses.h), the eigen-decomposition of a 3D stress that
+// MohrCoulomb's return mapping
 // uses: tensors with known principal values, then families of random
 // tensors, including the hard ones (two principal values equal or nearly
 // equal, as a return to an edge of the Mohr-Coulomb surface leaves them;
