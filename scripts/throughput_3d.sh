@@ -15,7 +15,9 @@
 #   weights ("linear elastic (cpdi)": hexahedral domains, whose corners on
 #   the mesh's walls are moved onto them).
 # The rate counts only the steps (mpm's 'Done' line), not the set-up, whose
-# wall time is listed too. Each case runs MPM_REPEATS times (default 3) and
+# wall time is listed too; the peak memory is mpm's 'Peak memory' line (the
+# resident set's high-water mark, libraries included: the memory per point
+# is the difference between two sizes over the difference of their points). Each case runs MPM_REPEATS times (default 3) and
 # the run with the median rate is kept; MPM_THREADS lists the threads per
 # run (default "1"; e.g. "1 2"). "untimed" is the share of the steps' wall
 # time in no timer section. Writes doc/throughput_3d.csv (landslide) and
@@ -27,7 +29,7 @@ mpm_setup Release
 out="output-throughput-3d"
 mkdir -p "$out"
 cases="${1:-all}"
-sections_header="shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,untimed_share"
+sections_header="shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,untimed_share,peak_memory_MB"
 
 # summarise LOG PREFIX: PREFIX, then steps, points, set-up and steps' wall
 # time, rate and the timer sections of one run's log, as one CSV line whose
@@ -37,14 +39,15 @@ summarise() {
     /^Done:/ { n_steps = $2; n_points = $4
                total = $0; sub(/.*wall time /, "", total); total += 0
                stepping = $0; sub(/.*\(steps /, "", stepping); sub(/ s\).*/, "", stepping) }
+    /^Peak memory:/ { memory = $3 }
     /^\| / { split($0, f, "|"); name = f[2]; gsub(/^ +| +$/, "", name)
              t = f[4]; gsub(/[ s]/, "", t); sec[name] = t
              if (name != "setup" && name != "Section" && name != "Total wallclock time elapsed since start") timed += t }
-    END { printf "%s,%d,%d,%.4g,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%.3f\n", prefix, n_steps, n_points,
+    END { printf "%s,%d,%d,%.4g,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%.3f,%s\n", prefix, n_steps, n_points,
             total - stepping, stepping, n_steps * n_points / stepping,
             sec["shape functions"], sec["particle to grid"], sec["nodal update"],
             sec["grid to particle"], sec["stress update"], sec["locate points"],
-            (stepping - timed) / stepping }' "$1"
+            (stepping - timed) / stepping, memory }' "$1"
 }
 
 # median FIELD: of the CSV lines on standard input, the one with the median

@@ -4,7 +4,10 @@
 # block of 2 x 2 points per cell on a fixed floor), split by the timer
 # sections; then the same block with CPDI weights, and the same 1e4 points
 # in a mesh with 100 times the cells (empty cells must cost nothing). The
-# rate counts only the steps (mpm's 'Done' line), not the set-up. Each case
+# rate counts only the steps (mpm's 'Done' line), not the set-up; the last
+# column is mpm's 'Peak memory' (the resident set's high-water mark,
+# libraries included: the memory per point is the difference between two
+# sizes over the difference of their points). Each case
 # runs MPM_REPEATS times (default 3) and the run with the median rate is
 # kept; MPM_THREADS lists the threads per run (default "1"; e.g. "1 2").
 # Writes doc/throughput.csv.
@@ -18,7 +21,7 @@ work="${1:-2.4e7}"
 out="output-throughput"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/throughput.csv"
-echo "model,points,cells,mesh_factor,threads,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s" > "$csv"
+echo "model,points,cells,mesh_factor,threads,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,peak_memory_MB" > "$csv"
 
 # run_once MODEL POINTS MESH_FACTOR WEIGHTS THREADS: the block has POINTS points
 # (2 x 2 per cell, side 1 m); the mesh is MESH_FACTOR times the block's
@@ -56,6 +59,7 @@ run_once() {
       -v factor="$factor" -v threads="$threads" '
     /^Done:/ { n_steps = $2; n_points = $4
                stepping = $0; sub(/.*\(steps /, "", stepping); sub(/ s\).*/, "", stepping) }
+    /^Peak memory:/ { memory = $3 }
     /^\| / {
       split($0, f, "|"); name = f[2]; gsub(/^ +| +$/, "", name)
       t = f[4]; gsub(/[ s]/, "", t)
@@ -65,9 +69,10 @@ run_once() {
       # The wall time of the steps (printed by mpm), including the work
       # between the timed sections.
       rate = n_steps * n_points / stepping
-      printf "%s,%d,%d,%d,%d,%d,%.4g,%.4g,%s,%s,%s,%s,%s,%s\n", model, n_points, cells, factor,
+      printf "%s,%d,%d,%d,%d,%d,%.4g,%.4g,%s,%s,%s,%s,%s,%s,%s\n", model, n_points, cells, factor,
         threads, n_steps, stepping, rate, sec["shape functions"], sec["particle to grid"],
-        sec["nodal update"], sec["grid to particle"], sec["stress update"], sec["locate points"]
+        sec["nodal update"], sec["grid to particle"], sec["stress update"], sec["locate points"],
+        memory
     }' "$out/$name.log"
 }
 

@@ -6,6 +6,7 @@
 // nodal_update.cc (the nodal steps between the particle-grid passes).
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
@@ -464,6 +465,19 @@ namespace MPM
           << static_cast<double>(steps_this_run) *
                particle_handler.n_global_particles() / (wall - steps_start)
           << " particle-steps/s in the steps\n";
+    {
+      // The peak resident set (the high-water mark of the whole run,
+      // libraries included), summed over the ranks: what a run of this
+      // size needs; the benchmark scripts take the memory per point from
+      // the difference between two sizes.
+      Utilities::System::MemoryStats memory;
+      Utilities::System::get_memory_stats(memory);
+      pcout << "Peak memory: "
+            << Utilities::MPI::sum(static_cast<double>(memory.VmHWM),
+                                   mpi_communicator) /
+                 1024.
+            << " MB resident (all ranks)\n";
+    }
     if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       pcout << "Load balance: " << n_repartitions
             << " repartition(s); busiest rank holds "
