@@ -15,6 +15,7 @@
 #include <mpm/transfer/cpdi_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 
@@ -218,7 +219,6 @@ namespace MPM
     corner_slot_of_cell.assign(triangulation.n_active_cells(),
                                numbers::invalid_unsigned_int);
     cell_patch_directions.assign(triangulation.n_active_cells(), {});
-    cell_patch_regular.assign(triangulation.n_active_cells(), false);
     // The hints name cells of these patches by position and index.
     corner_hints.clear();
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -274,7 +274,6 @@ namespace MPM
           };
           constexpr double margin     = 1e-10;
           auto            &directions = cell_patch_directions[index];
-          bool             regular    = true;
           directions.resize(patch.size());
           for (unsigned int i = 0; i < patch.size(); ++i)
             {
@@ -301,10 +300,8 @@ namespace MPM
                   code += stride;
                 else if (!(hi[d] <= margin))
                   mixed = true;
-              regular       = regular && !mixed;
               directions[i] = mixed ? mixed_direction : code;
             }
-          cell_patch_regular[index] = regular;
         }
   }
 
@@ -447,7 +444,9 @@ namespace MPM
             const auto &directions =
               cell_patch_directions[cell->active_cell_index()];
             const bool regular_patch =
-              cell_patch_regular[cell->active_cell_index()];
+              !directions.empty() &&
+              std::find(directions.begin(), directions.end(), mixed_direction) ==
+                directions.end();
             auto point = this->point_cell_first_point[pc];
             for (; p < p_end; ++point, ++p)
               {

@@ -170,13 +170,11 @@ namespace MPM
      * distorted one). A corner outside the cell goes first to the cells
      * of its own direction (the corner's reference coordinates in the
      * point's cell tell it): usually one, the neighbour it crossed into,
-     * instead of the ordered search through up to 27 cells.
+     * instead of the ordered search through up to 27 cells. Where no cell
+     * of the patch is mixed, a corner in a direction where no cell holds
+     * it lies outside the patch.
      */
     std::vector<std::vector<unsigned char>> cell_patch_directions;
-    /// Whether every cell of the patch has a direction (not mixed): then
-    /// a corner in a direction where no cell holds it lies outside the
-    /// patch (by index as cell_patch_directions).
-    std::vector<bool> cell_patch_regular;
     static constexpr unsigned char mixed_direction = 255;
 
     /**
