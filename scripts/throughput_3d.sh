@@ -17,8 +17,9 @@
 # The rate counts only the steps (mpm's 'Done' line), not the set-up, whose
 # wall time is listed too; the peak memory is mpm's 'Peak memory' line (the
 # resident set's high-water mark, libraries included: the memory per point
-# is the difference between two sizes over the difference of their points). Each case runs MPM_REPEATS times (default 3) and
-# the run with the median rate is kept; MPM_THREADS lists the threads per
+# is the difference between two sizes over the difference of their
+# points). Each case runs MPM_REPEATS times (default 3) and the run with
+# the median rate is kept; MPM_THREADS lists the threads per
 # run (default "1"; e.g. "1 2"). "untimed" is the share of the steps' wall
 # time in no timer section. Writes doc/throughput_3d.csv (landslide) and
 # doc/throughput_3d_block.csv.
@@ -29,7 +30,7 @@ mpm_setup Release
 out="output-throughput-3d"
 mkdir -p "$out"
 cases="${1:-all}"
-sections_header="shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,untimed_share,peak_memory_MB"
+sections_header="shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,untimed_share,peak_memory_MiB"
 
 # summarise LOG PREFIX: PREFIX, then steps, points, set-up and steps' wall
 # time, rate and the timer sections of one run's log, as one CSV line whose

@@ -7,9 +7,9 @@
 # rate counts only the steps (mpm's 'Done' line), not the set-up; the last
 # column is mpm's 'Peak memory' (the resident set's high-water mark,
 # libraries included: the memory per point is the difference between two
-# sizes over the difference of their points). Each case
-# runs MPM_REPEATS times (default 3) and the run with the median rate is
-# kept; MPM_THREADS lists the threads per run (default "1"; e.g. "1 2").
+# sizes over the difference of their points). Each case runs MPM_REPEATS
+# times (default 3) and the run with the median rate is kept; MPM_THREADS
+# lists the threads per run (default "1"; e.g. "1 2").
 # Writes doc/throughput.csv.
 # Usage: scripts/throughput_benchmark.sh [particle-steps per run, default 2.4e7]
 # (each run takes max(20, that / points) steps: 2-3 s of stepping on one
@@ -21,7 +21,7 @@ work="${1:-2.4e7}"
 out="output-throughput"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/throughput.csv"
-echo "model,points,cells,mesh_factor,threads,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,peak_memory_MB" > "$csv"
+echo "model,points,cells,mesh_factor,threads,steps,step_wall_s,particle_steps_per_s,shape_functions_s,particle_to_grid_s,nodal_update_s,grid_to_particle_s,stress_update_s,locate_points_s,peak_memory_MiB" > "$csv"
 
 # run_once MODEL POINTS MESH_FACTOR WEIGHTS THREADS: the block has POINTS points
 # (2 x 2 per cell, side 1 m); the mesh is MESH_FACTOR times the block's

@@ -476,7 +476,7 @@ namespace MPM
             << Utilities::MPI::sum(static_cast<double>(memory.VmHWM),
                                    mpi_communicator) /
                  1024.
-            << " MB resident (all ranks)\n";
+            << " MiB resident (all ranks)\n";
     }
     if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       pcout << "Load balance: " << n_repartitions

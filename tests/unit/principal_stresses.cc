@@ -1,14 +1,13 @@
 // Unit test of principal_values_and_directions() and PrincipalStresses
 // (principal_stresses.h), the eigen-decomposition of a 3D stress that
-// MohrCoulomb's return mapping
-// uses: tensors with known principal values, then families of random
-// tensors, including the hard ones (two principal values equal or nearly
-// equal, as a return to an edge of the Mohr-Coulomb surface leaves them;
-// a mean stress ten orders of magnitude above the deviator), each checked
-// to a few machine epsilons of |A| in the residual |A v - s v|, in the
+// MohrCoulomb's return mapping uses: tensors with known principal values, then
+// families of random tensors, including the hard ones (two principal values
+// equal or nearly equal, as a return to an edge of the Mohr-Coulomb surface
+// leaves them; a mean stress ten orders of magnitude above the deviator), each
+// checked to a few machine epsilons of |A| in the residual |A v - s v|, in the
 // orthonormality of the directions and in the reconstruction
-// sum_i s_i v_i v_i^T, and against deal.II's QL decomposition, which the
-// model used before.
+// sum_i s_i v_i v_i^T, and against deal.II's QL decomposition, which the model
+// used before.
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
