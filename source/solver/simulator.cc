@@ -380,9 +380,20 @@ namespace MPM
     };
     // The throughput counts the steps only, not the set-up.
     const double steps_start = wall_seconds();
-    while (!time_stepping.reached_end(time))
+    // The end time, or rest before it ('Termination/Stop at rest').
+    auto finished = [&]() {
+      return time_stepping.reached_end(time) || rest_criterion.at_rest();
+    };
+    while (!finished())
       {
         do_time_step();
+        if (rest_criterion.enabled())
+          rest_criterion.update(
+            time,
+            rest_criterion.measure() == RestCriterion::Measure::largest_speed ?
+              // Reduced by the grid-to-particle pass for the next step.
+              max_point_speed :
+              root_mean_square_point_speed());
         if (stability_monitor.energy_check_due(step))
           {
             const std::string problem =
@@ -394,17 +405,18 @@ namespace MPM
                                            particle_handler,
                                            mpi_communicator))
           repartition();
+        // The last step is an output step, whether it ends at the end time
+        // or at rest.
         const bool output_step =
+          rest_criterion.at_rest() ||
           output_writer.output_due(time, time_step, time_stepping.end_time);
         for (auto &p : postprocessors)
           p->execute(*this, output_step);
-        write_output(false);
+        write_output(rest_criterion.at_rest());
         ++steps_this_run;
-        if (!time_stepping.reached_end(time) &&
-            checkpointing.due(steps_this_run, mpi_communicator))
+        if (!finished() && checkpointing.due(steps_this_run, mpi_communicator))
           write_checkpoint();
-        if (checkpointing.stop_requested(steps_this_run) &&
-            !time_stepping.reached_end(time))
+        if (checkpointing.stop_requested(steps_this_run) && !finished())
           {
             pcout << "Stopped after " << steps_this_run
                   << " steps of this run (Checkpointing/Stop after steps) at "
@@ -418,7 +430,7 @@ namespace MPM
 
         const double wall = wall_seconds();
         if (wall - last_progress >= output_writer.progress_interval() ||
-            time_stepping.reached_end(time))
+            finished())
           {
             last_progress         = wall;
             const double fraction = time / time_stepping.end_time;
@@ -440,6 +452,13 @@ namespace MPM
            << " postprocessor(s)\n";
     for (const auto &warning : warnings)
       report << "# warning: " << warning << '\n';
+    if (rest_criterion.at_rest())
+      {
+        const std::string stop =
+          rest_criterion.description(time, time_stepping.end_time);
+        report << "# " << stop << '\n';
+        pcout << "The run " << stop << ".\n";
+      }
     // Only in scenes with such a material: every other report is unchanged.
     if (materials.has_state_dependent_stiffness())
       report << "# state-dependent stiffness: " << step

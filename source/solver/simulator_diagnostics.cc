@@ -31,6 +31,25 @@ namespace MPM
 
   template <int dim>
   double
+  Simulator<dim>::root_mean_square_point_speed() const
+  {
+    using Layout = PropertyLayout<dim>;
+    Tensor<1, 2> mass_and_mv2;
+    for (const auto &point : particle_handler)
+      {
+        const auto           props = point.get_properties();
+        const Tensor<1, dim> v     = read_vector<dim>(&props[Layout::velocity]);
+        mass_and_mv2[0] += props[Layout::mass];
+        mass_and_mv2[1] += props[Layout::mass] * v.norm_square();
+      }
+    mass_and_mv2 = Utilities::MPI::sum(mass_and_mv2, mpi_communicator);
+    return mass_and_mv2[0] > 0 ? std::sqrt(mass_and_mv2[1] / mass_and_mv2[0]) :
+                                 0.;
+  }
+
+
+  template <int dim>
+  double
   Simulator<dim>::compute_max_state_wave_speed() const
   {
     using Layout               = PropertyLayout<dim>;

@@ -62,6 +62,7 @@ namespace MPM
     LoadBalancing<dim>::declare_parameters(prm);
     Checkpointing<dim>::declare_parameters(prm);
     StabilityMonitor<dim>::declare_parameters(prm);
+    RestCriterion::declare_parameters(prm);
     prm.enter_subsection("Postprocess");
     prm.declare_entry("List of postprocessors",
                       "",
@@ -119,6 +120,7 @@ namespace MPM
     output_writer.parse_parameters(prm);
     load_balancing.parse_parameters(prm);
     stability_monitor.parse_parameters(prm);
+    rest_criterion.parse_parameters(prm);
     checkpointing.parse_parameters(prm, output_writer.directory());
     prm.enter_subsection("Postprocess");
     postprocessor_names = split_name_list(prm.get("List of postprocessors"),

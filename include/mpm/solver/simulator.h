@@ -17,6 +17,7 @@
 #include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/restart/checkpointing.h>
+#include <mpm/solver/rest_criterion.h>
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/statistics_file.h>
@@ -272,6 +273,11 @@ namespace MPM
     void
     set_max_point_speed(const double v_max2);
 
+    /// sqrt(sum m v^2 / sum m) over all points on all ranks (the rest
+    /// criterion's default measure). Collective.
+    double
+    root_mean_square_point_speed() const;
+
     /// The largest P-wave speed on all ranks over the points whose
     /// material's stiffness depends on the state, from their stress and
     /// state now (the set-up's, for step 0). Collective.
@@ -313,6 +319,7 @@ namespace MPM
     OutputWriter<dim>               output_writer;
     LoadBalancing<dim>              load_balancing;
     StabilityMonitor<dim>           stability_monitor;
+    RestCriterion                   rest_criterion;
     Checkpointing<dim>              checkpointing;
     unsigned int                    n_repartitions = 0;
     std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
