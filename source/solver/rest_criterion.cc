@@ -24,7 +24,8 @@ namespace MPM
                         "root mean square speed|largest speed"),
                       "'root mean square speed': sqrt(sum m v^2 / sum m) "
                       "over all points, at the end of each step (a few "
-                      "points creeping at a deposit's front do not keep the "
+                      "points creeping at a deposit's front weigh little; "
+                      "a point thrown out of the flow at speed keeps the "
                       "run going); 'largest speed': the fastest point's "
                       "(strict: one creeping point keeps the run going).");
     prm.declare_entry("Rest speed",
