@@ -25,11 +25,14 @@ namespace MPM
    *  - the root mean square speed, sqrt(sum m v^2 / sum m) (the default):
    *    the kinetic energy per mass: one more loop over the points (their
    *    mass and velocity, 32 of the about 750 bytes a 2D step reads and
-   *    writes per point) and one reduction per step. A
-   *    settled granular deposit keeps a few points creeping at the front
-   *    (the column collapse at a = 0.5: the front point moves 2.6 mm in
-   *    the 0.8 s after the mean speed fell below 1e-4 m/s); the mass-
-   *    weighted measure lets such a deposit stop.
+   *    writes per point) and one reduction per step. A settled granular
+   *    deposit keeps a few points creeping at the front (the column
+   *    collapse at a = 0.5: the mean speed is below 1e-4 m/s from 0.7 s
+   *    on, and the front point still moves 0.8 mm in the 0.5 s after);
+   *    the mass-weighted measure lets such a deposit stop. A point thrown
+   *    out of the flow at speed keeps it going (the collapse at a = 6 on
+   *    1.25 mm: one point at about 3 m/s holds the rms speed at 5-8 mm/s
+   *    while the mean speed is 1e-4 m/s).
    *  - the largest point speed: free (the grid-to-particle pass reduces it
    *    over all points and ranks for the next time step), and strict: one
    *    creeping point keeps the run going, so a deposit whose front creeps
