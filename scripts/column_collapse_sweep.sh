@@ -19,7 +19,7 @@ name_suffix="${MPM_SWEEP_NAME:+_$MPM_SWEEP_NAME}"
 out="output-column-collapse-sweep$name_suffix"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/column_collapse$name_suffix.csv"
-echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start" > "$csv"
+echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start,connected_runout,runout_95_percent_volume,runout_99_percent_volume" > "$csv"
 L0=0.1
 h="${MPM_CELL_SIZE:-0.005}"
 for a in $ratios; do
@@ -41,10 +41,12 @@ for a in $ratios; do
   value() { grep "^$1" "$report" | sed -E 's/.*: *//; s/ .*//'; }
   stop=$(grep -E "^mean speed below" "$report" | sed -E 's/.*t = ([0-9.e+-]+) s on/\1/' || true)
   done_line=$(grep '^Done:' "$out/$name.log")
-  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout (')" "$(value 'final height H_inf/L0')" \
+  printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n" "$a" "$(value 'runout (')" "$(value 'final height H_inf/L0')" \
     "${stop:-not stopped}" "$(value 'mean speed at the end')" "$(value 'Lube et al. 2005')" \
     "$(echo "$done_line" | awk '{print $4}')" \
     "$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')" \
-    "$(value 'runout of the deposit')" "$(value 'total point volume')" | tee -a "$csv"
+    "$(value 'runout of the deposit')" "$(value 'total point volume')" \
+    "$(value 'runout of the connected deposit')" "$(value 'runout holding 95 %')" \
+    "$(value 'runout holding 99 %')" | tee -a "$csv"
 done
 /usr/bin/python3 "$MPM_ROOT/scripts/plot_column_collapse.py" "$csv" "$MPM_ROOT/doc/column_collapse$name_suffix.png"

@@ -24,7 +24,14 @@ namespace MPM
      * largest y plus half a spacing) and the mean speed. At the end: the
      * runout (L_inf - L0) / L0 and the height H_inf / L0 of the final
      * state against the aspect ratio a = H0 / L0, and when the mean speed
-     * fell below 'Stop speed' for good.
+     * fell below 'Stop speed' for good; the final deposit's thickness
+     * profile and three measures of its runout beside the front point's:
+     * where the thickness falls below 'Front thickness', where the
+     * connected deposit ends (first empty bin), and within which x lie
+     * the shares 'Runout volume fractions' of the point volume. The last
+     * is the one that converges under mesh refinement: the threshold
+     * crossing of a thin tapering tail jumps by whole bins with the noise
+     * of the tail's thickness (doc/column_collapse.md).
      */
     template <int dim>
     class ColumnCollapse : public PostprocessorWithState<dim, ColumnCollapse<dim>>
@@ -66,6 +73,8 @@ namespace MPM
 
       double width = 0.1, initial_height = 0.2, base = 0, wall = 0,
              stop_speed = 0.01, bin_width = 0.005, front_thickness = 0.01;
+      /// 'Runout volume fractions'.
+      std::vector<double> volume_fractions{0.95, 0.99};
 
       std::string table;
       double      last_time_above_stop = 0;
