@@ -21,13 +21,19 @@ namespace MPM
     prm.declare_entry("Rest measure",
                       "root mean square speed",
                       Patterns::Selection(
-                        "root mean square speed|largest speed"),
+                        "root mean square speed|mean speed|largest speed"),
                       "'root mean square speed': sqrt(sum m v^2 / sum m) "
                       "over all points, at the end of each step (a few "
                       "points creeping at a deposit's front weigh little; "
                       "a point thrown out of the flow at speed keeps the "
-                      "run going); 'largest speed': the fastest point's "
-                      "(strict: one creeping point keeps the run going).");
+                      "run going); 'mean speed': sum m |v| / sum m (the "
+                      "least strict: thrown points weigh less than in the "
+                      "rms speed, for a scene that ejects a few, but so "
+                      "does a small flowing part beside a large static "
+                      "one: the a = 0.5 column collapse stops at 0.37 s "
+                      "instead of 0.74 s with its front point 7 % short); "
+                      "'largest speed': the fastest point's (strict: one "
+                      "creeping point keeps the run going).");
     prm.declare_entry("Rest speed",
                       "1e-3",
                       Patterns::Double(0),
@@ -54,9 +60,10 @@ namespace MPM
   {
     prm.enter_subsection("Termination");
     stop_at_rest  = prm.get_bool("Stop at rest");
-    rest_measure  = prm.get("Rest measure") == "largest speed" ?
-                      Measure::largest_speed :
-                      Measure::root_mean_square_speed;
+    const std::string measure = prm.get("Rest measure");
+    rest_measure  = measure == "largest speed" ? Measure::largest_speed :
+                    measure == "mean speed"    ? Measure::mean_speed :
+                                                 Measure::root_mean_square_speed;
     rest_speed    = prm.get_double("Rest speed");
     rest_duration = prm.get_double("Rest duration");
     earliest_stop = prm.get_double("Earliest stop time");
@@ -89,9 +96,9 @@ namespace MPM
     std::ostringstream out;
     out << "stopped at rest at t = " << time << " s (End time " << end_time
         << " s): "
-        << (rest_measure == Measure::largest_speed ?
-              "no point faster than " :
-              "root mean square speed below ")
+        << (rest_measure == Measure::largest_speed ? "no point faster than " :
+            rest_measure == Measure::mean_speed    ? "mean speed below " :
+                                                     "root mean square speed below ")
         << rest_speed << " m/s since t = " << below_since
         << " s (Termination/Rest speed, Rest duration " << rest_duration
         << " s";

@@ -388,12 +388,7 @@ namespace MPM
       {
         do_time_step();
         if (rest_criterion.enabled())
-          rest_criterion.update(
-            time,
-            rest_criterion.measure() == RestCriterion::Measure::largest_speed ?
-              // Reduced by the grid-to-particle pass for the next step.
-              max_point_speed :
-              root_mean_square_point_speed());
+          rest_criterion.update(time, point_speed(rest_criterion.measure()));
         if (stability_monitor.energy_check_due(step))
           {
             const std::string problem =

@@ -31,20 +31,29 @@ namespace MPM
 
   template <int dim>
   double
-  Simulator<dim>::root_mean_square_point_speed() const
+  Simulator<dim>::point_speed(const RestCriterion::Measure measure) const
   {
+    if (measure == RestCriterion::Measure::largest_speed)
+      // Reduced by the grid-to-particle pass for the next step.
+      return max_point_speed;
     using Layout = PropertyLayout<dim>;
-    Tensor<1, 2> mass_and_mv2;
+    const bool   root_mean_square =
+      measure == RestCriterion::Measure::root_mean_square_speed;
+    Tensor<1, 2> mass_and_weighted_speed;
     for (const auto &point : particle_handler)
       {
         const auto           props = point.get_properties();
         const Tensor<1, dim> v     = read_vector<dim>(&props[Layout::velocity]);
-        mass_and_mv2[0] += props[Layout::mass];
-        mass_and_mv2[1] += props[Layout::mass] * v.norm_square();
+        mass_and_weighted_speed[0] += props[Layout::mass];
+        mass_and_weighted_speed[1] +=
+          props[Layout::mass] * (root_mean_square ? v.norm_square() : v.norm());
       }
-    mass_and_mv2 = Utilities::MPI::sum(mass_and_mv2, mpi_communicator);
-    return mass_and_mv2[0] > 0 ? std::sqrt(mass_and_mv2[1] / mass_and_mv2[0]) :
-                                 0.;
+    mass_and_weighted_speed =
+      Utilities::MPI::sum(mass_and_weighted_speed, mpi_communicator);
+    if (!(mass_and_weighted_speed[0] > 0))
+      return 0.;
+    const double mean = mass_and_weighted_speed[1] / mass_and_weighted_speed[0];
+    return root_mean_square ? std::sqrt(mean) : mean;
   }
 
 

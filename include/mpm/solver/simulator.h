@@ -273,10 +273,11 @@ namespace MPM
     void
     set_max_point_speed(const double v_max2);
 
-    /// sqrt(sum m v^2 / sum m) over all points on all ranks (the rest
-    /// criterion's default measure). Collective.
+    /// The points' speed by @p measure on all ranks: sqrt(sum m v^2 /
+    /// sum m), sum m |v| / sum m, or the largest (reduced by the
+    /// grid-to-particle pass already: no loop). Collective.
     double
-    root_mean_square_point_speed() const;
+    point_speed(const RestCriterion::Measure measure) const;
 
     /// The largest P-wave speed on all ranks over the points whose
     /// material's stiffness depends on the state, from their stress and
