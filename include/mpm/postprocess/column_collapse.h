@@ -29,7 +29,9 @@ namespace MPM
      * where the thickness falls below 'Front thickness', where the
      * connected deposit ends (first empty bin), and within which x lie
      * the shares 'Runout volume fractions' of the point volume. The last
-     * is the one that converges under mesh refinement: the threshold
+     * is the one to converge under mesh refinement (APIC + CPDI at a = 4:
+     * within 0.8 % over three meshes, where the threshold runout moved by
+     * a quarter): the threshold
      * crossing of a thin tapering tail jumps by whole bins with the noise
      * of the tail's thickness (doc/column_collapse.md).
      */
