@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <numeric>
 #include <sstream>
 #include <vector>
 
@@ -234,12 +233,9 @@ namespace MPM
       report << "runout of the connected deposit (to the first empty bin of "
              << bin_width << " m), (L - L0)/L0: "
              << (first_empty * bin_width - width) / width << '\n';
-      // Volume quantiles (thickness was divided by the channel width: sum
-      // it again in the same unit).
-      const double total = std::accumulate(thickness.begin(),
-                                           thickness.end(),
-                                           0.) *
-                           bin_width;
+      // Volume quantiles, in the unit of thickness (divided by the channel
+      // width above).
+      const double total = volume / channel_width;
       for (const double q : volume_fractions)
         {
           double below = 0, x_q = n_bins * bin_width;
