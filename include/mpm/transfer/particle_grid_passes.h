@@ -183,14 +183,48 @@ namespace MPM
                       const VertexValues &v_node,
                       AffineFitSums      &sums) const;
 
-    /// Entry @p k's share of its point's forces, -V sigma grad w_i + w_i m
-    /// g, added to @p forces at its cell's vertices (@p props: the point's
-    /// properties).
+    /**
+     * What the particle-to-grid passes read of a point: its mass, volume,
+     * velocity and the in-plane (dim x dim) part of its stress.
+     */
+    struct PointTransferData
+    {
+      double         mass;
+      double         volume;
+      Tensor<1, dim> velocity;
+      Tensor<2, dim> stress;
+
+      /// From the point's properties @p props (the stress only if
+      /// @p with_stress).
+      static PointTransferData
+      read(const double *props, const bool with_stress);
+    };
+
+    /**
+     * Where the entries are not the points: each point's PointTransferData
+     * copied from its properties (in the order of the points, on the
+     * available threads) into point_transfer_data, which the entries then
+     * read. A cell's entries belong to the points of the cells around it,
+     * whose properties lie far apart in the ParticleHandler's storage (a
+     * record of 30-40 doubles each): read entry by entry, most of a
+     * particle-to-grid pass waited for them (doc/performance.md). The copy
+     * is read from records of 9 doubles (2D), in the same order; the
+     * arithmetic is the same.
+     */
     void
-    add_entry_forces(const unsigned int    k,
-                     const double         *props,
-                     const Tensor<1, dim> &gravity,
-                     VertexValues         &forces) const;
+    gather_point_transfer_data(const bool with_stress);
+
+    /// gather_point_transfer_data()'s copy, by point.
+    std::vector<PointTransferData> point_transfer_data;
+
+    /// Entry @p k's share of its point's forces, -V sigma grad w_i + w_i m
+    /// g, added to @p forces at its cell's vertices (@p point: what the
+    /// point's properties say).
+    void
+    add_entry_forces(const unsigned int       k,
+                     const PointTransferData &point,
+                     const Tensor<1, dim>    &gravity,
+                     VertexValues            &forces) const;
 
     /// Entry @p k's share of its point's velocity gradient, sum_i v_i (x)
     /// grad w_i, from its cell's nodal velocities @p v_node.

@@ -111,10 +111,11 @@ namespace MPM
     const bool with_forces)
   {
     TimerOutput::Scope t(this->context.timer, "particle to grid");
-    using Layout               = PropertyLayout<dim>;
     NodalFields         &nodal = this->context.nodal;
     const Tensor<1, dim> g     = this->context.time_stepping.gravity;
     const Apic<dim>     *apic  = this->context.transfer.apic();
+    if (!Weights::entries_are_points)
+      gather_point_transfer_data(with_forces);
     if (apic != nullptr && !Weights::entries_are_points)
       {
         // APIC: each point's affine matrix at its weights of this step
@@ -145,8 +146,12 @@ namespace MPM
           {
             const unsigned int p     = weights().point_of_entry(k);
             const double      *props = this->points[p];
-            const double m = props[Layout::mass];
-            const auto   v = read_vector<dim>(&props[Layout::velocity]);
+            const PointTransferData point =
+              Weights::entries_are_points ?
+                PointTransferData::read(props, with_forces) :
+                point_transfer_data[p];
+            const double m  = point.mass;
+            const auto  &v  = point.velocity;
             const auto  &sf = this->shape_functions[k];
             if (apic != nullptr)
               {
@@ -165,7 +170,7 @@ namespace MPM
               this->add_mass_and_momentum(
                 sf.value, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
-              add_entry_forces(k, props, g, forces);
+              add_entry_forces(k, point, g, forces);
           }
       });
     this->add_contributions_of_all_ranks(nodal.mass);
@@ -181,6 +186,8 @@ namespace MPM
   {
     TimerOutput::Scope   t(this->context.timer, "particle to grid");
     const Tensor<1, dim> g = this->context.time_stepping.gravity;
+    if (!Weights::entries_are_points)
+      gather_point_transfer_data(true);
     this->template for_active_cells<1>(
       {{&this->context.nodal.force}},
       [&](const unsigned int c,
@@ -189,8 +196,16 @@ namespace MPM
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
         for (unsigned int k = cell.first_entry; k < end; ++k)
-          add_entry_forces(
-            k, this->points[weights().point_of_entry(k)], g, forces[0]);
+          if constexpr (Weights::entries_are_points)
+            add_entry_forces(k,
+                             PointTransferData::read(this->points[k], true),
+                             g,
+                             forces[0]);
+          else
+            add_entry_forces(k,
+                             point_transfer_data[weights().point_of_entry(k)],
+                             g,
+                             forces[0]);
       });
     this->add_contributions_of_all_ranks(this->context.nodal.force);
   }
@@ -199,25 +214,62 @@ namespace MPM
   template <int dim, class Weights>
   void
   ParticleGridPasses<dim, Weights>::add_entry_forces(
-    const unsigned int    k,
-    const double         *props,
-    const Tensor<1, dim> &g,
-    VertexValues         &forces) const
+    const unsigned int       k,
+    const PointTransferData &point,
+    const Tensor<1, dim>    &g,
+    VertexValues            &forces) const
   {
-    using Layout   = PropertyLayout<dim>;
-    const auto  &sf = this->shape_functions[k];
-    const double m  = props[Layout::mass];
-    const double V  = props[Layout::volume];
-    // The dim x dim part of the stress: the only part that exerts in-plane
-    // forces.
-    const SymmetricTensor<2, 3> stress =
-      read_symmetric_tensor(&props[Layout::stress]);
-    Tensor<2, dim> sigma;
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = 0; b < dim; ++b)
-        sigma[a][b] = stress[a][b];
+    const auto           &sf    = this->shape_functions[k];
+    const double          m     = point.mass;
+    const double          V     = point.volume;
+    const Tensor<2, dim> &sigma = point.stress;
     for (unsigned int i = 0; i < n_vertices; ++i)
       forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
+  }
+
+
+  template <int dim, class Weights>
+  typename ParticleGridPasses<dim, Weights>::PointTransferData
+  ParticleGridPasses<dim, Weights>::PointTransferData::read(
+    const double *props,
+    const bool    with_stress)
+  {
+    using Layout = PropertyLayout<dim>;
+    PointTransferData point;
+    point.mass     = props[Layout::mass];
+    point.velocity = read_vector<dim>(&props[Layout::velocity]);
+    point.volume   = 0;
+    if (with_stress)
+      {
+        point.volume = props[Layout::volume];
+        // The dim x dim part of the stress: the only part that exerts
+        // in-plane forces.
+        const SymmetricTensor<2, 3> stress =
+          read_symmetric_tensor(&props[Layout::stress]);
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            point.stress[a][b] = stress[a][b];
+      }
+    return point;
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::gather_point_transfer_data(
+    const bool with_stress)
+  {
+    const unsigned int n_points = this->points.size();
+    point_transfer_data.resize(n_points);
+    for_each_chunk(n_points,
+                   chunk_size_for(n_points),
+                   [&](const unsigned int,
+                       const unsigned int first,
+                       const unsigned int last) {
+                     for (unsigned int p = first; p < last; ++p)
+                       point_transfer_data[p] =
+                         PointTransferData::read(this->points[p], with_stress);
+                   });
   }
 
 
@@ -259,13 +311,20 @@ namespace MPM
       (!remap_momentum || this->second_moment_bounded_below());
     // The momentum (v_p + C_p dx_i) m_p w_ip a point maps back under MUSL,
     // into the per-vertex sums @p remapped of entry k's cell.
+    // (Where the entries are not the points, from point_transfer_data,
+    // gathered after the points' update.)
     const auto remap = [&](const ActiveCell    &cell,
                            const unsigned int   k,
                            const Tensor<2, dim> *C,
                            VertexValues        &remapped) {
-      const double *props = this->points[weights().point_of_entry(k)];
-      const double         m  = props[Layout::mass];
-      const Tensor<1, dim> v  = read_vector<dim>(&props[Layout::velocity]);
+      const unsigned int   p  = weights().point_of_entry(k);
+      const double         m  = Weights::entries_are_points ?
+                                  this->points[p][Layout::mass] :
+                                  point_transfer_data[p].mass;
+      const Tensor<1, dim> v  = Weights::entries_are_points ?
+                                  read_vector<dim>(
+                                    &this->points[p][Layout::velocity]) :
+                                  point_transfer_data[p].velocity;
       const auto          &N  = this->shape_functions[k].value;
       if (C != nullptr)
         {
@@ -393,6 +452,7 @@ namespace MPM
         // 3. MUSL: the points' new momentum back to the nodes.
         if (remap_momentum)
           {
+            gather_point_transfer_data(false);
             this->zero_touched_entries(nodal.momentum);
             this->template for_active_cells<1>(
               {{&nodal.momentum}},
