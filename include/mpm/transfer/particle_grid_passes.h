@@ -194,10 +194,15 @@ namespace MPM
       Tensor<1, dim> velocity;
       Tensor<2, dim> stress;
 
-      /// From the point's properties @p props (the stress only if
-      /// @p with_stress).
+      /// From the point's properties @p props (the volume and stress
+      /// only if @p with_stress).
       static PointTransferData
       read(const double *props, const bool with_stress);
+
+      /// The dim x dim part of the stress in @p props: the only part that
+      /// exerts in-plane forces.
+      static Tensor<2, dim>
+      in_plane_stress(const double *props);
     };
 
     /**
@@ -217,14 +222,16 @@ namespace MPM
     /// gather_point_transfer_data()'s copy, by point.
     std::vector<PointTransferData> point_transfer_data;
 
-    /// Entry @p k's share of its point's forces, -V sigma grad w_i + w_i m
-    /// g, added to @p forces at its cell's vertices (@p point: what the
-    /// point's properties say).
+    /// Entry @p k's share of the forces of its point (mass @p m, volume
+    /// @p V, in-plane stress @p sigma), -V sigma grad w_i + w_i m g, added
+    /// to @p forces at its cell's vertices.
     void
-    add_entry_forces(const unsigned int       k,
-                     const PointTransferData &point,
-                     const Tensor<1, dim>    &gravity,
-                     VertexValues            &forces) const;
+    add_entry_forces(const unsigned int    k,
+                     const double          m,
+                     const double          V,
+                     const Tensor<2, dim> &sigma,
+                     const Tensor<1, dim> &gravity,
+                     VertexValues         &forces) const;
 
     /// Entry @p k's share of its point's velocity gradient, sum_i v_i (x)
     /// grad w_i, from its cell's nodal velocities @p v_node.

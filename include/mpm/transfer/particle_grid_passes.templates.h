@@ -111,6 +111,7 @@ namespace MPM
     const bool with_forces)
   {
     TimerOutput::Scope t(this->context.timer, "particle to grid");
+    using Layout               = PropertyLayout<dim>;
     NodalFields         &nodal = this->context.nodal;
     const Tensor<1, dim> g     = this->context.time_stepping.gravity;
     const Apic<dim>     *apic  = this->context.transfer.apic();
@@ -146,13 +147,14 @@ namespace MPM
           {
             const unsigned int p     = weights().point_of_entry(k);
             const double      *props = this->points[p];
-            const PointTransferData point =
+            const double       m     = Weights::entries_are_points ?
+                                         props[Layout::mass] :
+                                         point_transfer_data[p].mass;
+            const Tensor<1, dim> v =
               Weights::entries_are_points ?
-                PointTransferData::read(props, with_forces) :
-                point_transfer_data[p];
-            const double m  = point.mass;
-            const auto  &v  = point.velocity;
-            const auto  &sf = this->shape_functions[k];
+                read_vector<dim>(&props[Layout::velocity]) :
+                point_transfer_data[p].velocity;
+            const auto &sf = this->shape_functions[k];
             if (apic != nullptr)
               {
                 // Each vertex receives the point's affine field there,
@@ -170,7 +172,22 @@ namespace MPM
               this->add_mass_and_momentum(
                 sf.value, m, v, nullptr, nullptr, mass, momentum);
             if (with_forces)
-              add_entry_forces(k, point, g, forces);
+              {
+                if constexpr (Weights::entries_are_points)
+                  add_entry_forces(k,
+                                   m,
+                                   props[Layout::volume],
+                                   PointTransferData::in_plane_stress(props),
+                                   g,
+                                   forces);
+                else
+                  add_entry_forces(k,
+                                   m,
+                                   point_transfer_data[p].volume,
+                                   point_transfer_data[p].stress,
+                                   g,
+                                   forces);
+              }
           }
       });
     this->add_contributions_of_all_ranks(nodal.mass);
@@ -185,6 +202,7 @@ namespace MPM
   ParticleGridPasses<dim, Weights>::map_forces()
   {
     TimerOutput::Scope   t(this->context.timer, "particle to grid");
+    using Layout           = PropertyLayout<dim>;
     const Tensor<1, dim> g = this->context.time_stepping.gravity;
     if (!Weights::entries_are_points)
       gather_point_transfer_data(true);
@@ -197,15 +215,22 @@ namespace MPM
         const unsigned int end  = cell.first_entry + cell.n_points;
         for (unsigned int k = cell.first_entry; k < end; ++k)
           if constexpr (Weights::entries_are_points)
-            add_entry_forces(k,
-                             PointTransferData::read(this->points[k], true),
-                             g,
-                             forces[0]);
+            {
+              const double *props = this->points[k];
+              add_entry_forces(k,
+                               props[Layout::mass],
+                               props[Layout::volume],
+                               PointTransferData::in_plane_stress(props),
+                               g,
+                               forces[0]);
+            }
           else
-            add_entry_forces(k,
-                             point_transfer_data[weights().point_of_entry(k)],
-                             g,
-                             forces[0]);
+            {
+              const PointTransferData &point =
+                point_transfer_data[weights().point_of_entry(k)];
+              add_entry_forces(
+                k, point.mass, point.volume, point.stress, g, forces[0]);
+            }
       });
     this->add_contributions_of_all_ranks(this->context.nodal.force);
   }
@@ -214,17 +239,34 @@ namespace MPM
   template <int dim, class Weights>
   void
   ParticleGridPasses<dim, Weights>::add_entry_forces(
-    const unsigned int       k,
-    const PointTransferData &point,
-    const Tensor<1, dim>    &g,
-    VertexValues            &forces) const
+    const unsigned int    k,
+    const double          m,
+    const double          V,
+    const Tensor<2, dim> &sigma,
+    const Tensor<1, dim> &g,
+    VertexValues         &forces) const
   {
-    const auto           &sf    = this->shape_functions[k];
-    const double          m     = point.mass;
-    const double          V     = point.volume;
-    const Tensor<2, dim> &sigma = point.stress;
+    const auto &sf = this->shape_functions[k];
     for (unsigned int i = 0; i < n_vertices; ++i)
       forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
+  }
+
+
+  template <int dim, class Weights>
+  Tensor<2, dim>
+  ParticleGridPasses<dim, Weights>::PointTransferData::in_plane_stress(
+    const double *props)
+  {
+    using Layout = PropertyLayout<dim>;
+    // The dim x dim part of the stress: the only part that exerts in-plane
+    // forces.
+    const SymmetricTensor<2, 3> stress =
+      read_symmetric_tensor(&props[Layout::stress]);
+    Tensor<2, dim> sigma;
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = 0; b < dim; ++b)
+        sigma[a][b] = stress[a][b];
+    return sigma;
   }
 
 
@@ -238,18 +280,9 @@ namespace MPM
     PointTransferData point;
     point.mass     = props[Layout::mass];
     point.velocity = read_vector<dim>(&props[Layout::velocity]);
-    point.volume   = 0;
+    point.volume   = with_stress ? props[Layout::volume] : 0.;
     if (with_stress)
-      {
-        point.volume = props[Layout::volume];
-        // The dim x dim part of the stress: the only part that exerts
-        // in-plane forces.
-        const SymmetricTensor<2, 3> stress =
-          read_symmetric_tensor(&props[Layout::stress]);
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            point.stress[a][b] = stress[a][b];
-      }
+      point.stress = in_plane_stress(props);
     return point;
   }
 
