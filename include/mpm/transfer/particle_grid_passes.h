@@ -211,10 +211,11 @@ namespace MPM
      * available threads) into point_transfer_data, which the entries then
      * read. A cell's entries belong to the points of the cells around it,
      * whose properties lie far apart in the ParticleHandler's storage (a
-     * record of 30-40 doubles each): read entry by entry, most of a
+     * record of 26 doubles for a 2D linear-elastic point with CPDI, more
+     * with a material's state): read entry by entry, most of a
      * particle-to-grid pass waited for them (doc/performance.md). The copy
-     * is read from records of 9 doubles (2D), in the same order; the
-     * arithmetic is the same.
+     * is read from records of 8 doubles (2D; 14 in 3D), in the same order;
+     * the arithmetic is the same.
      */
     void
     gather_point_transfer_data(const bool with_stress);
