@@ -345,7 +345,7 @@ namespace MPM
     // The momentum (v_p + C_p dx_i) m_p w_ip a point maps back under MUSL,
     // into the per-vertex sums @p remapped of entry k's cell.
     // (Where the entries are not the points, from point_transfer_data,
-    // gathered after the points' update.)
+    // copied in the points' update.)
     const auto remap = [&](const ActiveCell    &cell,
                            const unsigned int   k,
                            const Tensor<2, dim> *C,
@@ -454,9 +454,14 @@ namespace MPM
               }
           }
         // 2. The points, in chunks of their own cells (point_cell_begin),
-        //    what they find taken over in chunk order.
+        //    what they find taken over in chunk order; under MUSL each
+        //    point's new velocity copied for the remap while its record is
+        //    at hand (gather_point_transfer_data()'s copy, without a second
+        //    pass over the records).
         if (fit_affine)
           point_affine.resize(n_points);
+        if (remap_momentum)
+          point_transfer_data.resize(n_points);
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
           auto point = point_cell_first_point[c];
           for (unsigned int p = point_cell_begin[c];
@@ -479,13 +484,15 @@ namespace MPM
                                           sums.node_scale,
                                           this->points[p] + this->transfer_slot);
                 }
+              if (remap_momentum)
+                point_transfer_data[p] =
+                  PointTransferData::read(this->points[p], false);
             }
         });
         v_max2 = record_chunk_findings();
         // 3. MUSL: the points' new momentum back to the nodes.
         if (remap_momentum)
           {
-            gather_point_transfer_data(false);
             this->zero_touched_entries(nodal.momentum);
             this->template for_active_cells<1>(
               {{&nodal.momentum}},
