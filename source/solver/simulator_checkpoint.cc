@@ -47,8 +47,9 @@ namespace MPM
     // 2: the removed points' energy appended; 3: the walls' contact state;
     // 4: the largest state-dependent wave speed; 5: the points' mass times
     // their shifts through periodic boundaries; 6: the rest criterion's
-    // state (older formats are still read).
-    const unsigned int  format      = 6;
+    // state; 7: the energies of the run's start for the stability check
+    // (older formats are still read).
+    const unsigned int  format      = 7;
     const Tensor<1, dim> wrapped_shift = wrapped_mass_shift();
     std::array<double, dim> wrapped_shift_values;
     for (unsigned int d = 0; d < dim; ++d)
@@ -78,7 +79,7 @@ namespace MPM
          << removed_mass << n_repartitions << stats_bytes << output_writer
          << postprocessor_names << postprocessor_states << removed_energy
          << contact[0] << contact[1] << max_state_wave_speed
-         << wrapped_shift_values << rest_criterion;
+         << wrapped_shift_values << rest_criterion << stability_monitor;
     }
     return state.str();
   }
@@ -97,7 +98,7 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format >= 1 && format <= 6 && space_dim == dim,
+    check_input(format >= 1 && format <= 7 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -128,6 +129,9 @@ namespace MPM
       ar >> wrapped_shift_values;
     if (format >= 6)
       ar >> rest_criterion;
+    // Older checkpoints: the energies of the resumed state (set-up).
+    if (format >= 7)
+      ar >> stability_monitor;
     boundary_conditions.set_contact(contact);
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "

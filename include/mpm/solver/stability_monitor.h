@@ -75,6 +75,19 @@ namespace MPM
            const double cell_size,
            const bool   adaptive);
 
+    /**
+     * The energies of the run's start, for a checkpoint: a resumed run
+     * checks against the start of the run, not of the resumption (where
+     * the scene has released nothing yet, and a run that the uninterrupted
+     * one would continue could be stopped, or the reverse).
+     */
+    template <class Archive>
+    void
+    serialize(Archive &ar, const unsigned int /*version*/)
+    {
+      ar &initial_energy &initial_potential_energy;
+    }
+
   private:
     double       growth_factor   = 10;
     unsigned int interval        = 100;
