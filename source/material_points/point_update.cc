@@ -80,7 +80,7 @@ namespace MPM
 
 
   template <int dim>
-  void
+  double
   PointUpdate<dim>::update_stress(double               *props,
                                   const Tensor<2, dim> &grad_v,
                                   const double          cell_size,
@@ -116,8 +116,21 @@ namespace MPM
                            &props[Layout::strain]);
     // Volume follows the determinant of the incremental deformation
     // gradient I + dt grad v.
-    props[Layout::volume] *=
-      determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
+    double &volume = props[Layout::volume];
+    volume *= determinant(unit_symmetric_tensor<dim>() + dt * grad_v);
+    // The material's loosest state bounds the volume (a branch for the
+    // materials without a bound).
+    if (material.minimum_density > 0)
+      {
+        const double largest = props[Layout::mass] / material.minimum_density;
+        if (volume > largest)
+          {
+            const double factor = largest / volume;
+            volume              = largest;
+            return factor;
+          }
+      }
+    return 1.;
   }
 
 

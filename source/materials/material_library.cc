@@ -72,6 +72,21 @@ namespace MPM
                           "1000",
                           Patterns::Double(),
                           "Mass density in kg/m^3; must be > 0.");
+        prm.declare_entry(
+          "Minimum density",
+          "0",
+          Patterns::Double(),
+          "Lower bound of a material point's density m_p / V_p in kg/m^3, "
+          "at most 'Density'; 0: none. A point whose volume would grow "
+          "beyond m_p / (minimum density) keeps that volume (and its CPDI "
+          "domain shrinks with it). For a granular material, its loosest "
+          "state: beyond it the grains have lost contact, and a point "
+          "that leaves the flow under a tension cutoff carries no stress "
+          "whatever its volume; without a bound its volume can grow "
+          "without limit (2,200 times in a column collapse, "
+          "doc/robustness.md) and, landing again, a point of that volume "
+          "is struck by the first compression with the force of as many "
+          "points.");
         prm.declare_entry("Model",
                           "linear elastic",
                           Patterns::Selection(
@@ -116,6 +131,13 @@ namespace MPM
         check_input(m.density > 0,
                     "Materials/" + name + "/Density = " +
                       prm.get("Density") + ": must be > 0 (kg/m^3).");
+        m.minimum_density = prm.get_double("Minimum density");
+        check_input(m.minimum_density >= 0 &&
+                      m.minimum_density <= m.density,
+                    "Materials/" + name + "/Minimum density = " +
+                      prm.get("Minimum density") +
+                      ": must be at least 0 and at most the material's "
+                      "Density, " + prm.get("Density") + " kg/m^3.");
         const std::string model = prm.get("Model");
         try
           {

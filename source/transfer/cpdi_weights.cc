@@ -875,13 +875,21 @@ namespace MPM
   template <int dim>
   void
   CpdiWeights<dim>::deform_with_point(double               *props,
-                                      const Tensor<2, dim> &grad_v) const
+                                      const Tensor<2, dim> &grad_v,
+                                      const double          volume_factor) const
   {
     // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
     const auto D = PointDomains<dim>::read(props + this->own_slot);
-    PointDomains<dim>::write(
-      point_domains.deformed_domain(D, this->context.time_step * grad_v),
-      props + this->own_slot);
+    auto       deformed =
+      point_domains.deformed_domain(D, this->context.time_step * grad_v);
+    // Its area (volume) stays the point's.
+    if (volume_factor != 1.)
+      {
+        const double shrink = std::pow(volume_factor, 1. / dim);
+        for (auto &offset : deformed)
+          offset *= shrink;
+      }
+    PointDomains<dim>::write(deformed, props + this->own_slot);
   }
 
 

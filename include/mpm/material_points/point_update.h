@@ -88,7 +88,12 @@ namespace MPM
     /// regularised by it). For a material whose stiffness depends on the
     /// state, the point's new P-wave speed enters @p findings. Safe on
     /// several threads for different points and findings.
-    void
+    ///
+    /// Returns the factor by which the point's volume was reduced below
+    /// V_p det(I + dt grad v) to keep it at most m_p over its material's
+    /// 'Minimum density' (1 if it was not), for the weights' own data
+    /// (CPDI's domain) to follow.
+    double
     update_stress(double               *props,
                   const Tensor<2, dim> &grad_v,
                   const double          cell_size,

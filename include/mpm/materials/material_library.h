@@ -23,6 +23,9 @@ namespace MPM
   {
     std::string                    name;
     double                         density = 0;
+    /// 'Minimum density': a point of this material keeps a volume of at
+    /// most its mass over this (0: no bound; PointUpdate::update_stress()).
+    double                         minimum_density = 0;
     std::unique_ptr<MaterialModel> model;
     /// model->stiffness_depends_on_state(), asked once when parsed: the
     /// stress update reads it for every point.

@@ -89,9 +89,13 @@ namespace MPM
       return dx;
     }
 
-    /// The domain deforms with the point: D_c <- (I + dt grad v) D_c.
+    /// The domain deforms with the point: D_c <- (I + dt grad v) D_c,
+    /// and shrinks about it if the point's volume was reduced by
+    /// @p volume_factor < 1 (its material's 'Minimum density').
     void
-    deform_with_point(double *props, const Tensor<2, dim> &grad_v) const;
+    deform_with_point(double               *props,
+                      const Tensor<2, dim> &grad_v,
+                      const double          volume_factor) const;
 
     const BilinearCellMap *
     cell_map_of_point(const unsigned int p) const

@@ -53,7 +53,7 @@ namespace MPM
     }
 
     static void
-    deform_with_point(double *, const Tensor<2, dim> &)
+    deform_with_point(double *, const Tensor<2, dim> &, const double)
     {}
 
     static const BilinearCellMap *

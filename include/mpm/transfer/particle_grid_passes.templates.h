@@ -542,8 +542,9 @@ namespace MPM
                                   const double          cell_size,
                                   typename PointUpdate<dim>::Findings &found) {
       double *props = this->points[p];
-      updater.update_stress(props, grad_v, cell_size, found);
-      weights().deform_with_point(props, grad_v);
+      const double volume_factor =
+        updater.update_stress(props, grad_v, cell_size, found);
+      weights().deform_with_point(props, grad_v, volume_factor);
       if (store_gradient)
         Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
     };
