@@ -73,6 +73,7 @@ namespace MPM
     max_state_wave_speed2 =
       std::max(max_state_wave_speed2, findings.max_state_wave_speed2);
     relocation.add_located(findings.located);
+    n_volume_bounded_updates += findings.n_volume_bounded;
     const double v_max2 = findings.v_max2;
     findings            = Findings();
     return v_max2;
@@ -127,6 +128,7 @@ namespace MPM
           {
             const double factor = largest / volume;
             volume              = largest;
+            ++findings.n_volume_bounded;
             return factor;
           }
       }

@@ -492,6 +492,17 @@ namespace MPM
                  1024.
             << " MiB resident (all ranks)\n";
     }
+    // How often a material's 'Minimum density' acted: a bound on the
+    // physics, which the user should see.
+    bool volume_bounded = false;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      volume_bounded |= materials[m].minimum_density > 0;
+    if (volume_bounded)
+      pcout << "Minimum density: "
+            << Utilities::MPI::sum(point_update.n_volume_bounded(),
+                                   mpi_communicator)
+            << " stress update(s) kept a point's volume at its material's "
+               "bound (all ranks, this invocation).\n";
     if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       pcout << "Load balance: " << n_repartitions
             << " repartition(s); busiest rank holds "

@@ -12,6 +12,7 @@
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace MPM
@@ -61,6 +62,9 @@ namespace MPM
       /// The first point found with a non-finite velocity, position or
       /// stress (empty if none).
       std::string first_bad_point;
+      /// Stress updates that kept a point's volume at its material's
+      /// 'Minimum density'.
+      std::uint64_t n_volume_bounded = 0;
       /// Step 1 of the point location, if done while moving.
       typename PointRelocation<dim>::Located located;
     };
@@ -141,6 +145,14 @@ namespace MPM
                             Tensor<2, dim>     *grad_v,
                             const unsigned int n);
 
+    /// Stress updates on this rank, since the start of this invocation,
+    /// that kept a point's volume at its material's 'Minimum density'.
+    std::uint64_t
+    n_volume_bounded() const
+    {
+      return n_volume_bounded_updates;
+    }
+
     /// Description of the first point found non-finite, empty if none.
     const std::string &
     first_bad_point() const
@@ -158,6 +170,7 @@ namespace MPM
     std::string                  bad_point;
     /// The square of take_max_state_wave_speed().
     double                       max_state_wave_speed2 = 0;
+    std::uint64_t                n_volume_bounded_updates = 0;
   };
 } // namespace MPM
 
