@@ -514,10 +514,23 @@ namespace MPM
     else
       {
         parallelepiped_maps.assign(triangulation.n_active_cells(), {});
+        extruded_map_index.assign(triangulation.n_active_cells(),
+                                  numbers::invalid_unsigned_int);
+        extruded_maps.clear();
         for (const auto &cell : triangulation.active_cell_iterators())
           if (!cell->is_artificial())
-            parallelepiped_maps[cell->active_cell_index()] = ParallelepipedMap(
-              vertices_of_cells[cell->active_cell_index()]);
+            {
+              const auto &vertices = vertices_of_cells[cell->active_cell_index()];
+              parallelepiped_maps[cell->active_cell_index()] =
+                ParallelepipedMap(vertices);
+              const ExtrudedCellMap extruded(vertices);
+              if (extruded.is_extruded())
+                {
+                  extruded_map_index[cell->active_cell_index()] =
+                    extruded_maps.size();
+                  extruded_maps.push_back(extruded);
+                }
+            }
       }
 
     dof_handler.distribute_dofs(fe);

@@ -6,6 +6,7 @@
 #include <mpm/grid/bilinear_cell_map.h>
 #include <mpm/grid/inverse_mapping.h>
 #include <mpm/grid/newton_inverse_map.h>
+#include <mpm/grid/extruded_cell_map.h>
 
 #include <cmath>
 #include <limits>
@@ -123,6 +124,22 @@ namespace MPM
   }
 
 
+  InverseMappingResult<3>
+  inverse_map_closed_form(const std::array<Point<3>, 8> &vertices,
+                          const Point<3>                &x)
+  {
+    // Any other cell as with 'newton' (the same numbers).
+    const ExtrudedCellMap map(vertices);
+    if (map.is_extruded())
+      {
+        const InverseMappingResult<3> result = map.inverse(x);
+        if (result.success)
+          return result;
+      }
+    return inverse_map_newton<3>(vertices, x);
+  }
+
+
   template <int dim>
   InverseMappingResult<dim>
   inverse_map_newton(
@@ -177,11 +194,7 @@ namespace MPM
                                       const Mapping<dim>      &mapping)
     : mapping_type(type)
     , mapping(&mapping)
-  {
-    check_input(dim == 2 || type != InverseMappingType::closed_form,
-                "The closed form inverse mapping exists only in 2D; choose "
-                "'newton' or 'deal.II'.");
-  }
+  {}
 
 
   template <int dim>
@@ -209,9 +222,7 @@ namespace MPM
     switch (mapping_type)
       {
         case InverseMappingType::closed_form:
-          if constexpr (dim == 2)
-            return inverse_map_closed_form(vertices, x);
-          break;
+          return inverse_map_closed_form(vertices, x);
         case InverseMappingType::newton:
           return inverse_map_newton<dim>(vertices, x);
         case InverseMappingType::dealii:

@@ -33,12 +33,17 @@ namespace MPM
       "ParticleHandler::sort_particles_into_subdomains_and_cells() every "
       "step. Both give the same cells and coordinates to round-off.");
     prm.declare_entry("Inverse mapping",
-                      dim == 2 ? "closed form" : "newton",
+                      "closed form",
                       Patterns::Selection(inverse_mapping_type_selection()),
                       "Inverse of the isoparametric map used by 'Point "
                       "location = incremental': 'closed form' (bilinear "
-                      "quadrilaterals, 2D only; doc/point_location.md), "
-                      "'newton', or deal.II's MappingQ1 ('deal.II').");
+                      "quadrilaterals; in 3D parallelepipeds and cells "
+                      "extruded along one direction, such as terrain "
+                      "columns, and Newton's iteration for any other "
+                      "hexahedron; doc/point_location.md), 'newton' "
+                      "(Newton's iteration, in 3D for every cell that is "
+                      "not a parallelepiped), or deal.II's MappingQ1 "
+                      "('deal.II').");
     prm.leave_subsection();
   }
 
@@ -108,20 +113,26 @@ namespace MPM
           }
         const auto &vertices = grid->cell_vertices(cell);
         // A parallelepiped (3D) is inverted by one product instead of
-        // Newton's iteration (not with 'Inverse mapping = deal.II').
-        // Any other hexahedron by Newton's iteration from each point's
-        // last reference coordinates (TrilinearCellMap).
-        const ParallelepipedMap *affine_map = nullptr;
+        // Newton's iteration (not with 'Inverse mapping = deal.II'), an
+        // extruded hexahedron (terrain) in closed form with 'closed form'
+        // (ExtrudedCellMap). Any other hexahedron by Newton's iteration
+        // from each point's last reference coordinates (TrilinearCellMap).
+        const ParallelepipedMap *affine_map   = nullptr;
+        const ExtrudedCellMap   *extruded_map = nullptr;
         std::optional<TrilinearCellMap> trilinear_map;
         if constexpr (dim == 3)
-          if (inverse_type == InverseMappingType::newton)
+          if (inverse_type == InverseMappingType::newton ||
+              inverse_type == InverseMappingType::closed_form)
             {
-              if (grid->parallelepiped_map(cell->active_cell_index())
-                    .is_affine())
-                affine_map =
-                  &grid->parallelepiped_map(cell->active_cell_index());
+              const unsigned int index = cell->active_cell_index();
+              if (grid->parallelepiped_map(index).is_affine())
+                affine_map = &grid->parallelepiped_map(index);
               else
-                trilinear_map.emplace(vertices);
+                {
+                  if (inverse_type == InverseMappingType::closed_form)
+                    extruded_map = grid->extruded_map(index);
+                  trilinear_map.emplace(vertices);
+                }
             }
         for (auto point = points.begin(); point != points.end(); ++point)
           {
@@ -134,9 +145,14 @@ namespace MPM
                     result.xi      = affine_map->inverse(x);
                     result.success = true;
                   }
-                else if (trilinear_map)
-                  result = trilinear_map->inverse(
-                    x, point->get_reference_location());
+                else
+                  {
+                    if (extruded_map != nullptr)
+                      result = extruded_map->inverse(x);
+                    if (!result.success)
+                      result = trilinear_map->inverse(
+                        x, point->get_reference_location());
+                  }
               }
             if (!result.success)
               result =

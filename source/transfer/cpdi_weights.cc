@@ -63,8 +63,9 @@ namespace MPM
 
 
     /// Whether the cell with @p vertices (and, in 2D, @p map; in 3D,
-    /// @p parallelepiped) contains @p x, and its reference coordinates
-    /// @p xi there.
+    /// @p parallelepiped and @p extruded, the grid's maps of the cell,
+    /// nullptr where it has none) contains @p x, and its reference
+    /// coordinates @p xi there.
     template <int dim>
     bool
     cell_contains(
@@ -72,11 +73,13 @@ namespace MPM
                             &vertices,
       const BilinearCellMap   *map,
       const ParallelepipedMap *parallelepiped,
+      const ExtrudedCellMap   *extruded,
       const Point<dim>        &x,
       Point<dim>              &xi)
     {
       if constexpr (dim == 2)
         {
+          (void)extruded;
           // A parallelogram's inverse map is Cramer's rule: cheaper than any
           // test before it (what the edge test below rejects, points farther
           // out than contains()' tolerance, 1e-12 of the cell, rejects).
@@ -113,7 +116,13 @@ namespace MPM
             }
           if (!in_bounding_box<dim>(vertices, x, 0.))
             return false;
-          const auto result = inverse_map_newton<dim>(vertices, x);
+          // An extruded cell (terrain) in closed form, any other by
+          // Newton's iteration.
+          InverseMappingResult<dim> result;
+          if (extruded != nullptr)
+            result = extruded->inverse(x);
+          if (!result.success)
+            result = inverse_map_newton<dim>(vertices, x);
           if (!result.success || !inside_unit_cell(result.xi))
             return false;
           xi = result.xi;
@@ -386,6 +395,7 @@ namespace MPM
                                                       patch_vertices;
             std::array<const BilinearCellMap *, 64>   patch_maps;
             std::array<const ParallelepipedMap *, 64> patch_parallelepipeds;
+            std::array<const ExtrudedCellMap *, 64>   patch_extruded;
             // (vertices_of() and the like read them: a corner's search
             // looks them up first.)
             bool patch_looked_up = false;
@@ -398,6 +408,7 @@ namespace MPM
                     dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
                   patch_parallelepipeds[i] =
                     dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
+                  patch_extruded[i] = grid.extruded_map(patch[i]);
                 }
               patch_looked_up = true;
             };
@@ -409,6 +420,9 @@ namespace MPM
             };
             const auto parallelepiped_of = [&](const unsigned int i) {
               return patch_parallelepipeds[i];
+            };
+            const auto extruded_of = [&](const unsigned int i) {
+              return patch_extruded[i];
             };
             // Periodic boundaries: each patch cell's image.
             const unsigned char *image_of =
@@ -502,7 +516,12 @@ namespace MPM
                   if constexpr (dim == 2)
                     result = map_of(i)->inverse(z);
                   else
-                    result = inverse_map_newton<dim>(vertices, z);
+                    {
+                      if (extruded_of(i) != nullptr)
+                        result = extruded_of(i)->inverse(z);
+                      if (!result.success)
+                        result = inverse_map_newton<dim>(vertices, z);
+                    }
                   if (!result.success || !inside_unit_cell(result.xi, 0.02))
                     return false;
                   for (unsigned int d = 0; d < dim; ++d)
@@ -529,6 +548,7 @@ namespace MPM
                   if (cell_contains<dim>(*vertices_of(0),
                                          map_of(0),
                                          parallelepiped_of(0),
+                                         extruded_of(0),
                                          in_cell_frame(0, x[c]),
                                          xi[c]))
                     {
@@ -554,6 +574,7 @@ namespace MPM
                         cell_contains<dim>(*vertices_of(i),
                                            map_of(i),
                                            parallelepiped_of(i),
+                                           extruded_of(i),
                                            in_cell_frame(i, x[c]),
                                            xi[c]))
                       {
@@ -604,16 +625,24 @@ namespace MPM
                                 cell_contains<dim>(grid.cell_vertices(k),
                                                    nullptr,
                                                    &grid.parallelepiped_map(k),
+                                                   nullptr,
                                                    hinted_frame(c),
                                                    xi[c]);
                             else
                               {
-                                // Newton from the corner's last reference
-                                // coordinates (TrilinearCellMap).
-                                const auto result =
-                                  TrilinearCellMap(grid.cell_vertices(k))
-                                    .inverse(hinted_frame(c),
-                                             corner_hint_xi[hint_index][c]);
+                                // In closed form if the cell is extruded,
+                                // else by Newton's iteration from the
+                                // corner's last reference coordinates
+                                // (TrilinearCellMap).
+                                InverseMappingResult<dim> result;
+                                if (const ExtrudedCellMap *extruded =
+                                      grid.extruded_map(k))
+                                  result = extruded->inverse(hinted_frame(c));
+                                if (!result.success)
+                                  result =
+                                    TrilinearCellMap(grid.cell_vertices(k))
+                                      .inverse(hinted_frame(c),
+                                               corner_hint_xi[hint_index][c]);
                                 hit[c] = result.success &&
                                          inside_unit_cell(result.xi);
                                 xi[c] = result.xi;
@@ -662,6 +691,7 @@ namespace MPM
                           if (cell_contains<dim>(*vertices_of(i),
                                                  map_of(i),
                                                  parallelepiped_of(i),
+                                                 extruded_of(i),
                                                  in_cell_frame(i, x[c]),
                                                  xi[c]))
                             {
@@ -724,7 +754,7 @@ namespace MPM
                             if constexpr (dim == 2)
                               xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
                             else
-                              xi[c] = inverse_map_newton<dim>(
+                              xi[c] = inverse_map_closed_form(
                                         grid.cell_vertices(cell), x[c])
                                         .xi;
                           }

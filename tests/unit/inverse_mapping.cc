@@ -20,6 +20,14 @@
 // 3D, where deal.II has no closed form, its Newton stops at an estimated
 // error of 1e-11 and is checked against 1e-10. The closed form (with the
 // polish) and our Newton pass everywhere.
+//
+// 3D closed form: hexahedra extruded along one reference direction (terrain
+// columns: vertical edges over a rectangular or a general quadrilateral
+// cross-section, a wavy bottom and top; the same along x and along
+// reference direction 0; vertical to one ulp of the coordinates only) are
+// recognised and inverted without iteration, to round-off, inside and up
+// to half a cell outside; a parallelepiped and a distorted hexahedron are
+// not, and get Newton's numbers bit for bit.
 
 #include <deal.II/fe/mapping_q1.h>
 
@@ -28,6 +36,7 @@
 
 #include <mpm/base/input_error.h>
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/extruded_cell_map.h>
 
 #include <cmath>
 #include <cstdint>
@@ -383,6 +392,120 @@ namespace
               << "\n  newton vs deal.II against 1e-10: "
               << verdict(difference, 1e-10) << '\n';
   }
+
+  /**
+   * A hexahedron extruded along reference direction @p r and axis @p k:
+   * the cross-section's vertices @p section in the two other axes, the
+   * coordinate along k of each vertex from a wavy bottom at xi_r = 0 and a
+   * wavy top at xi_r = 1.
+   */
+  std::array<Point<3>, 8>
+  extruded_cell(const std::array<Point<2>, 4> &section,
+                const unsigned int             r,
+                const unsigned int             k,
+                const double                   offset)
+  {
+    const unsigned int      p = r == 0 ? 1 : 0, q = r == 2 ? 1 : 2;
+    const unsigned int      h0 = k == 0 ? 1 : 0, h1 = k == 2 ? 1 : 2;
+    std::array<Point<3>, 8> v;
+    for (unsigned int i = 0; i < 8; ++i)
+      {
+        const unsigned int j   = ((i >> p) & 1) | (((i >> q) & 1) << 1);
+        const bool         top = (i >> r) & 1;
+        v[i][h0]               = section[j][0];
+        v[i][h1]               = section[j][1];
+        v[i][k] = offset + 0.3 * j - 0.1 * j * j + (top ? 1.5 + 0.2 * j : 0);
+      }
+    return v;
+  }
+
+  void
+  test_extruded_3d()
+  {
+    struct Case
+    {
+      std::string             name;
+      std::array<Point<3>, 8> vertices;
+      bool                    extruded;
+    };
+    const std::array<Point<2>, 4> rectangle = {
+      {{50, 20}, {52, 20}, {50, 21.5}, {52, 21.5}}};
+    const std::array<Point<2>, 4> quad = {
+      {{0, 0}, {1.2, 0.1}, {0.2, 0.9}, {1.1, 1.3}}};
+    std::vector<Case> cases;
+    cases.push_back({"terrain column over a rectangle (r = 2, z)",
+                     extruded_cell(rectangle, 2, 2, 120),
+                     true});
+    cases.push_back({"column over a general quadrilateral (r = 2, z)",
+                     extruded_cell(quad, 2, 2, 0),
+                     true});
+    cases.push_back({"extruded along x, reference direction 0",
+                     extruded_cell(quad, 0, 0, 3),
+                     true});
+    {
+      // The top's x one ulp off the column (a refined mesh's averages).
+      auto v = extruded_cell(rectangle, 2, 2, 120);
+      v[5][0] = std::nextafter(v[5][0], 100.);
+      cases.push_back({"terrain column, top vertex one ulp off", v, true});
+    }
+    {
+      auto v = extruded_cell(rectangle, 2, 2, 120);
+      v[6][1] += 1e-3;
+      cases.push_back({"column leaning by 1e-3 (not extruded)", v, false});
+    }
+    {
+      std::array<Point<3>, 8> v;
+      for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          v[i][d] = ((i >> d) & 1) * (1. + d);
+      cases.push_back({"box (a parallelepiped: not marked)", v, false});
+    }
+    {
+      std::array<Point<3>, 8> v;
+      std::mt19937_64         generator(5);
+      for (unsigned int i = 0; i < 8; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          v[i][d] = ((i >> d) & 1) + 0.2 * (uniform(generator) - 0.5) + d;
+      cases.push_back({"distorted hexahedron (not extruded)", v, false});
+    }
+    std::cout << "3D closed form\n";
+    for (const auto &c : cases)
+      {
+        const ExtrudedCellMap map(c.vertices);
+        std::mt19937_64        generator(7);
+        double                 error_xi = 0, difference = 0;
+        unsigned int           failures = 0, n_differ = 0;
+        for (unsigned int n = 0; n < 2000; ++n)
+          {
+            // Inside, then up to half a cell outside.
+            const double spread = n < 1000 ? 1 : 2;
+            Point<3>     xi;
+            for (unsigned int d = 0; d < 3; ++d)
+              xi[d] = spread * uniform(generator) - 0.5 * (spread - 1);
+            const Point<3> x      = map_unit_to_real(c.vertices, xi);
+            const auto     closed = inverse_map_closed_form(c.vertices, x);
+            const auto     newton = inverse_map_newton<3>(c.vertices, x);
+            failures += !closed.success;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                error_xi = std::max(error_xi, std::abs(closed.xi[d] - xi[d]));
+                difference =
+                  std::max(difference, std::abs(closed.xi[d] - newton.xi[d]));
+              }
+            n_differ += !(closed.xi == newton.xi);
+          }
+        std::cout << "  " << c.name << ": extruded "
+                  << (map.is_extruded() ? "yes" : "no")
+                  << (map.is_extruded() == c.extruded ? "" : " (WRONG)")
+                  << ", |xi(x(xi)) - xi| " << verdict(error_xi)
+                  << ", against Newton " << verdict(difference)
+                  << ", failures " << failures;
+        if (!c.extruded)
+          std::cout << ", bits differ from Newton's in " << n_differ
+                    << " of 2000";
+        std::cout << '\n';
+      }
+  }
 } // namespace
 
 
@@ -405,4 +528,5 @@ main()
     test_shape(shape);
 
   test_newton_3d();
+  test_extruded_3d();
 }

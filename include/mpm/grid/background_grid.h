@@ -13,6 +13,7 @@
 #include <deal.II/fe/mapping_q1.h>
 
 #include <mpm/grid/bilinear_cell_map.h>
+#include <mpm/grid/extruded_cell_map.h>
 #include <mpm/grid/parallelepiped_map.h>
 #include <mpm/grid/periodic_boundaries.h>
 #include <mpm/grid/terrain.h>
@@ -155,6 +156,22 @@ namespace MPM
     }
 
     /**
+     * The closed-form inverse map of the locally relevant active cell with
+     * active_cell_index() @p index if it is extruded (ExtrudedCellMap:
+     * terrain columns), nullptr for any other cell and in 2D. Computed
+     * once; stored only for the extruded cells.
+     */
+    const ExtrudedCellMap *
+    extruded_map(const unsigned int index) const
+    {
+      if (extruded_map_index.empty())
+        return nullptr;
+      AssertIndexRange(index, extruded_map_index.size());
+      const unsigned int k = extruded_map_index[index];
+      return k == numbers::invalid_unsigned_int ? nullptr : &extruded_maps[k];
+    }
+
+    /**
      * @name Scene rotation.
      * The parameter file describes a scene in its own frame; "Mesh/Scene
      * rotation angle" turns the whole scene (about "Scene rotation axis"
@@ -273,6 +290,10 @@ namespace MPM
       vertices_of_cells;
     std::vector<BilinearCellMap>   bilinear_maps;
     std::vector<ParallelepipedMap> parallelepiped_maps;
+    /// extruded_map(): each cell's position in extruded_maps (or
+    /// numbers::invalid_unsigned_int), and the maps of the extruded cells.
+    std::vector<unsigned int>    extruded_map_index;
+    std::vector<ExtrudedCellMap> extruded_maps;
   };
 } // namespace MPM
 

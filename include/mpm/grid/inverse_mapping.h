@@ -24,7 +24,9 @@ namespace MPM
    * - closed_form: the explicit inverse of the 2D bilinear map (Zhao et al.
    *   1999, Eq. 1-3 of the paper, rewritten for deal.II's reference cell),
    *   i.e. one quadratic equation, plus one Newton step as polish. No
-   *   iteration, no exceptions. 2D only.
+   *   iteration, no exceptions. In 3D the explicit inverse where the
+   *   hexahedron has one (an extruded cell, as in terrain-following
+   *   meshes: ExtrudedCellMap) and Newton's iteration elsewhere.
    * - newton: Newton's method on the multilinear map, started from the
    *   affine approximation at the cell centre, as deal.II's MappingQ1 does
    *   as its fall-back. Any dim.
@@ -145,6 +147,16 @@ namespace MPM
                           const bool                     newton_polish = true);
 
   /**
+   * The 3D counterpart: the closed-form inverse of a hexahedron extruded
+   * along one reference direction (its edges along it parallel to one
+   * coordinate axis: terrain-following cells), Newton's iteration
+   * (inverse_map_newton()) for any other (ExtrudedCellMap).
+   */
+  InverseMappingResult<3>
+  inverse_map_closed_form(const std::array<Point<3>, 8> &vertices,
+                          const Point<3>                &x);
+
+  /**
    * Newton's method for the inverse of the multilinear map of a cell with
    * @p vertices (deal.II order), started from the affine map that agrees
    * with the cell's map and Jacobian at the cell centre. A step is halved
@@ -189,8 +201,7 @@ namespace MPM
     /**
      * @p mapping must be a MappingQ1 (or another mapping that is the
      * multilinear map of the vertices); it is only used by
-     * InverseMappingType::dealii but must outlive this object. Throws
-     * InputError for closed_form in 3D.
+     * InverseMappingType::dealii but must outlive this object.
      */
     InverseMapping(const InverseMappingType type, const Mapping<dim> &mapping);
 
