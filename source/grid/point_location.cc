@@ -11,29 +11,14 @@ namespace MPM
     const Point<dim> &x,
     const double      tolerance)
   {
-    constexpr double   interior_margin = 1e-8;
-    PointLocation<dim> location;
-    for (const auto &cell : candidates)
-      {
-        const auto result =
-          inverse_mapping.transform_real_to_unit_cell(cell, x);
-        if (!result.success || !inside_unit_cell(result.xi, tolerance))
-          continue;
-        if (!location.found ||
-            cell->active_cell_index() < location.cell->active_cell_index())
-          {
-            location.cell  = cell;
-            location.xi    = result.xi;
-            location.found = true;
-          }
-        bool interior = true;
-        for (unsigned int d = 0; d < dim; ++d)
-          interior = interior && result.xi[d] > interior_margin &&
-                     result.xi[d] < 1. - interior_margin;
-        if (interior)
-          return location;
-      }
-    return location;
+    return locate_point_by<dim>(
+      [&](const typename Triangulation<dim>::active_cell_iterator &cell,
+          const Point<dim>                                        &y) {
+        return inverse_mapping.transform_real_to_unit_cell(cell, y);
+      },
+      candidates,
+      x,
+      tolerance);
   }
 
 

@@ -225,7 +225,32 @@ namespace MPM
     bool                need_full_sort = false;
 
     // 2. The points that left: first the cells around the old one, then
-    //    the whole mesh.
+    //    the whole mesh. A candidate's map as the grid keeps it: an
+    //    bilinear map ('closed form' in 2D) or an extruded cell's closed
+    //    form ('closed form' in 3D), else the inverse mapping of its
+    //    vertices: the same numbers as through the cell, without reading
+    //    the vertices through the triangulation (an artificial cell, which
+    //    the grid keeps no vertices of, through the cell).
+    const bool by_vertices = inverse_type != InverseMappingType::dealii;
+    const auto invert_in   = [&](const CellIterator &cell,
+                               const Point<dim>   &y) {
+      if (!by_vertices || cell->is_artificial())
+        return inverse_mapping->transform_real_to_unit_cell(cell, y);
+      const unsigned int index = cell->active_cell_index();
+      if constexpr (dim == 2)
+        if (inverse_type == InverseMappingType::closed_form)
+          return grid->bilinear_map(index).inverse(y);
+      if constexpr (dim == 3)
+        if (inverse_type == InverseMappingType::closed_form)
+          if (const ExtrudedCellMap *extruded = grid->extruded_map(index))
+            {
+              const InverseMappingResult<dim> result = extruded->inverse(y);
+              if (result.success)
+                return result;
+            }
+      return inverse_mapping->transform_real_to_unit_cell(
+        grid->cell_vertices(index), y);
+    };
     std::vector<CellIterator> candidates;
     for (const auto &point : leavers)
       {
@@ -243,7 +268,7 @@ namespace MPM
                   candidates.end())
               candidates.push_back(c);
         PointLocation<dim> location =
-          locate_point(*inverse_mapping, candidates, x);
+          locate_point_by<dim>(invert_in, candidates, x);
         if (!location.found)
           {
             const auto found = GridTools::find_active_cell_around_point(

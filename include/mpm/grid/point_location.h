@@ -53,6 +53,46 @@ namespace MPM
                      &candidates,
     const Point<dim> &x,
     const double      tolerance = reference_cell_tolerance);
+
+  /**
+   * locate_point() with the inverse map of a candidate given by
+   * @p invert(cell, x) (an InverseMappingResult<dim>), for callers that
+   * keep each cell's map (PointRelocation: BackgroundGrid's vertices and
+   * extruded cells' maps, instead of reading the vertices through the
+   * triangulation for every candidate).
+   */
+  template <int dim, typename Invert>
+  PointLocation<dim>
+  locate_point_by(
+    const Invert &invert,
+    const std::vector<typename Triangulation<dim>::active_cell_iterator>
+                     &candidates,
+    const Point<dim> &x,
+    const double      tolerance = reference_cell_tolerance)
+  {
+    constexpr double   interior_margin = 1e-8;
+    PointLocation<dim> location;
+    for (const auto &cell : candidates)
+      {
+        const InverseMappingResult<dim> result = invert(cell, x);
+        if (!result.success || !inside_unit_cell(result.xi, tolerance))
+          continue;
+        if (!location.found ||
+            cell->active_cell_index() < location.cell->active_cell_index())
+          {
+            location.cell  = cell;
+            location.xi    = result.xi;
+            location.found = true;
+          }
+        bool interior = true;
+        for (unsigned int d = 0; d < dim; ++d)
+          interior = interior && result.xi[d] > interior_margin &&
+                     result.xi[d] < 1. - interior_margin;
+        if (interior)
+          return location;
+      }
+    return location;
+  }
 } // namespace MPM
 
 #endif
