@@ -233,6 +233,16 @@ namespace MPM
   }
 
 
+  bool
+  MaterialLibrary::has_volume_bound() const
+  {
+    for (const auto &m : materials)
+      if (m.minimum_density > 0)
+        return true;
+    return false;
+  }
+
+
   double
   MaterialLibrary::max_constant_wave_speed() const
   {

@@ -494,10 +494,7 @@ namespace MPM
     }
     // How often a material's 'Minimum density' acted: a bound on the
     // physics, which the user should see.
-    bool volume_bounded = false;
-    for (unsigned int m = 0; m < materials.size(); ++m)
-      volume_bounded |= materials[m].minimum_density > 0;
-    if (volume_bounded)
+    if (materials.has_volume_bound())
       pcout << "Minimum density: "
             << Utilities::MPI::sum(point_update.n_volume_bounded(),
                                    mpi_communicator)

@@ -131,6 +131,14 @@ namespace MPM
     has_state_dependent_stiffness() const;
 
     /**
+     * Whether a material bounds its points' volume ('Minimum density'
+     * above 0): then the run's summary counts the stress updates that
+     * kept a volume at the bound.
+     */
+    bool
+    has_volume_bound() const;
+
+    /**
      * Largest elastic wave speed of the materials whose stiffness does not
      * depend on the state; max_wave_speed() if there are only such.
      */
