@@ -225,7 +225,7 @@ namespace MPM
     bool                need_full_sort = false;
 
     // 2. The points that left: first the cells around the old one, then
-    //    the whole mesh. A candidate's map as the grid keeps it: an
+    //    the whole mesh. A candidate's map as the grid keeps it: its
     //    bilinear map ('closed form' in 2D) or an extruded cell's closed
     //    form ('closed form' in 3D), else the inverse mapping of its
     //    vertices: the same numbers as through the cell, without reading
