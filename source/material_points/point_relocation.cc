@@ -131,7 +131,8 @@ namespace MPM
                 {
                   if (inverse_type == InverseMappingType::closed_form)
                     extruded_map = grid->extruded_map(index);
-                  trilinear_map.emplace(vertices);
+                  if (extruded_map == nullptr)
+                    trilinear_map.emplace(vertices);
                 }
             }
         for (auto point = points.begin(); point != points.end(); ++point)
@@ -149,7 +150,7 @@ namespace MPM
                   {
                     if (extruded_map != nullptr)
                       result = extruded_map->inverse(x);
-                    if (!result.success)
+                    else
                       result = trilinear_map->inverse(
                         x, point->get_reference_location());
                   }
@@ -242,12 +243,17 @@ namespace MPM
           return grid->bilinear_map(index).inverse(y);
       if constexpr (dim == 3)
         if (inverse_type == InverseMappingType::closed_form)
-          if (const ExtrudedCellMap *extruded = grid->extruded_map(index))
-            {
-              const InverseMappingResult<dim> result = extruded->inverse(y);
-              if (result.success)
-                return result;
-            }
+          {
+            // What inverse_map_closed_form() does, with the grid's map
+            // instead of one built from the vertices for each candidate.
+            if (const ExtrudedCellMap *extruded = grid->extruded_map(index))
+              {
+                const InverseMappingResult<dim> result = extruded->inverse(y);
+                if (result.success)
+                  return result;
+              }
+            return inverse_map_newton<dim>(grid->cell_vertices(index), y);
+          }
       return inverse_mapping->transform_real_to_unit_cell(
         grid->cell_vertices(index), y);
     };

@@ -6,6 +6,7 @@
 
 #include <mpm/grid/bilinear_cell_map.h>
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/trilinear_cell_map.h>
 
 #include <algorithm>
 #include <array>
@@ -50,15 +51,9 @@ namespace MPM
     explicit ExtrudedCellMap(const std::array<Point<3>, 8> &v)
     {
       // The map in monomial form, x(xi) = v0 + sum_i b_i prod_{d in i}
-      // xi_d, b_i named by the bits of the vertex it starts from.
-      std::array<Tensor<1, 3>, 8> b;
-      b[1]                      = v[1] - v[0];
-      b[2]                      = v[2] - v[0];
-      b[4]                      = v[4] - v[0];
-      b[3]                      = (v[3] - v[1]) - (v[2] - v[0]);
-      b[5]                      = (v[5] - v[1]) - (v[4] - v[0]);
-      b[6]                      = (v[6] - v[2]) - (v[4] - v[0]);
-      b[7]     = ((v[7] - v[6]) - (v[5] - v[4])) - ((v[3] - v[2]) - (v[1] - v[0]));
+      // xi_d.
+      const std::array<Tensor<1, 3>, 8> b =
+        TrilinearCellMap::monomial_coefficients(v);
       double magnitude = 0;
       for (unsigned int a = 0; a < 3; ++a)
         magnitude = std::max(magnitude, std::abs(v[0][a]));

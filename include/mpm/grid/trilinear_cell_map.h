@@ -34,16 +34,32 @@ namespace MPM
   class TrilinearCellMap
   {
   public:
+    /**
+     * The coefficients of the trilinear map of the hexahedron with
+     * vertices @p v (deal.II's order) in monomial form: b[i] multiplies
+     * the product of the reference coordinates whose bits i has (b[0] is
+     * unused: v0 is the origin). Each is formed from differences of edge
+     * vectors, so that it is exactly zero where the cell has no such
+     * term (a parallelepiped's b3, b5, b6, b7; an extruded cell's
+     * off-axis parts, ExtrudedCellMap).
+     */
+    static std::array<Tensor<1, 3>, 8>
+    monomial_coefficients(const std::array<Point<3>, 8> &v)
+    {
+      std::array<Tensor<1, 3>, 8> b;
+      b[1] = v[1] - v[0];
+      b[2] = v[2] - v[0];
+      b[4] = v[4] - v[0];
+      b[3] = (v[3] - v[1]) - (v[2] - v[0]);
+      b[5] = (v[5] - v[1]) - (v[4] - v[0]);
+      b[6] = (v[6] - v[2]) - (v[4] - v[0]);
+      b[7] = ((v[7] - v[6]) - (v[5] - v[4])) - ((v[3] - v[2]) - (v[1] - v[0]));
+      return b;
+    }
+
     /// The map of the hexahedron with @p vertices in deal.II's order.
     explicit TrilinearCellMap(const std::array<Point<3>, 8> &v)
-      : origin(v[0])
-      , b1(v[1] - v[0])
-      , b2(v[2] - v[0])
-      , b4(v[4] - v[0])
-      , b3((v[3] - v[1]) - (v[2] - v[0]))
-      , b5((v[5] - v[1]) - (v[4] - v[0]))
-      , b6((v[6] - v[2]) - (v[4] - v[0]))
-      , b7(((v[7] - v[6]) - (v[5] - v[4])) - ((v[3] - v[2]) - (v[1] - v[0])))
+      : TrilinearCellMap(v[0], monomial_coefficients(v))
     {}
 
     /**
@@ -91,6 +107,18 @@ namespace MPM
     }
 
   private:
+    TrilinearCellMap(const Point<3>                    &v0,
+                     const std::array<Tensor<1, 3>, 8> &b)
+      : origin(v0)
+      , b1(b[1])
+      , b2(b[2])
+      , b4(b[4])
+      , b3(b[3])
+      , b5(b[5])
+      , b6(b[6])
+      , b7(b[7])
+    {}
+
     static bool
     near_unit_cell(const Point<3> &xi)
     {
