@@ -92,24 +92,22 @@ namespace MPM
     const unsigned int n_state = materials.max_n_state_variables();
     const Material &material =
       materials[static_cast<unsigned int>(props[Layout::material_id])];
-    SymmetricTensor<2, 3> stress =
-      read_symmetric_tensor(&props[Layout::stress]);
+    double *const               stress = &props[Layout::stress];
     const SymmetricTensor<2, 3> strain_increment =
-      materials.update_stress<dim>(material,
-                                   grad_v,
-                                   dt,
-                                   stress,
-                                   ArrayView<double>(props + Layout::state,
-                                                     n_state),
-                                   cell_size);
-    write_symmetric_tensor(stress, &props[Layout::stress]);
+      materials.update_stored_stress<dim>(
+        material,
+        grad_v,
+        dt,
+        stress,
+        ArrayView<double>(props + Layout::state, n_state),
+        cell_size);
     // The stiffness at the end of this step is the one of the next step's
     // time step. Only for such materials: the others pay one branch.
     if (material.state_dependent_stiffness)
       findings.max_state_wave_speed2 =
         std::max(findings.max_state_wave_speed2,
                  material.model->p_wave_modulus(
-                   stress,
+                   read_symmetric_tensor(stress),
                    ArrayView<const double>(props + Layout::state, n_state)) /
                    material.density);
     write_symmetric_tensor(read_symmetric_tensor(&props[Layout::strain]) +

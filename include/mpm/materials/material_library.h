@@ -8,6 +8,7 @@
 #include <mpm/materials/objective_stress_rate.h>
 
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
@@ -151,9 +152,10 @@ namespace MPM
      * carried with the point's rotation (objective_stress_rate()) while
      * @p material's model adds the increment of the strain
      * sym(grad_v) dt, updating the point's @p state. Returns that strain
-     * increment. The MPM step (PointUpdate) and the material-point driver
-     * both update stresses here. @p cell_size: the size of the point's
-     * background cell (MaterialModel::update_stress_in_cell()).
+     * increment. The material-point driver updates stresses here, the MPM
+     * step (PointUpdate) through update_stored_stress(), the same
+     * arithmetic. @p cell_size: the size of the point's background cell
+     * (MaterialModel::update_stress_in_cell()).
      */
     template <int dim>
     SymmetricTensor<2, 3>
@@ -164,10 +166,38 @@ namespace MPM
                   const ArrayView<double> &state,
                   const double             cell_size) const
     {
+      double stored[6];
+      std::memcpy(stored, &stress.access_raw_entry(0), sizeof stored);
+      const SymmetricTensor<2, 3> strain_increment = update_stored_stress<dim>(
+        material, grad_v, dt, stored, state, cell_size);
+      std::memcpy(&stress.access_raw_entry(0), stored, sizeof stored);
+      return strain_increment;
+    }
+
+    /**
+     * update_stress() of the stress stored at @p stored_stress (six numbers
+     * in SymmetricTensor's order, as a material point keeps it), read from
+     * there and written back: the last rotation stores its results there
+     * directly (ObjectiveStressRate::rotate_and_store(): a copy of the
+     * rotated tensor would stall on the store forwarding).
+     */
+    template <int dim>
+    SymmetricTensor<2, 3>
+    update_stored_stress(const Material          &material,
+                         const Tensor<2, dim>    &grad_v,
+                         const double             dt,
+                         double                  *stored_stress,
+                         const ArrayView<double> &state,
+                         const double             cell_size) const
+    {
       SymmetricTensor<2, 3> strain_increment;
       for (unsigned int a = 0; a < dim; ++a)
         for (unsigned int b = a; b < dim; ++b)
           strain_increment[a][b] = 0.5 * dt * (grad_v[a][b] + grad_v[b][a]);
+      SymmetricTensor<2, 3> stress;
+      std::memcpy(&stress.access_raw_entry(0),
+                  stored_stress,
+                  6 * sizeof(double));
       // Half the step's rotation before the model's increment and half
       // after (Strang splitting): the increment is added in the step's
       // mid-point frame, second order in dt (one rotation before it would
@@ -176,7 +206,9 @@ namespace MPM
       ObjectiveStressRate::rotate<dim>(stress, half_step);
       material.model->update_stress_in_cell(
         strain_increment, stress, state, dt, cell_size);
-      ObjectiveStressRate::rotate<dim>(stress, half_step);
+      ObjectiveStressRate::rotate_and_store<dim>(stress,
+                                                 half_step,
+                                                 stored_stress);
       return strain_increment;
     }
 

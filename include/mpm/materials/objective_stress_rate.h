@@ -129,37 +129,47 @@ namespace MPM
     {
       if (R.identity)
         return;
+      apply(stress,
+            R,
+            [&stress](const unsigned int i,
+                      const unsigned int j,
+                      const double       value) { stress[i][j] = value; });
+    }
+
+    /**
+     * rotate() of @p stress with its result stored at @p stored, six
+     * numbers in SymmetricTensor's order (as a material point keeps its
+     * stress), entry by entry; with 'none' a copy.
+     *
+     * Why not rotate() and a copy of the tensor: the rotation's results
+     * are scalars, and written one by one into the tensor they cannot be
+     * forwarded to the 16-byte loads the compiler makes of a six-number
+     * copy; in 2D that stall was a fifth of PointUpdate::update_stress()'s
+     * samples on the throughput block (doc/performance.md).
+     */
+    template <int dim>
+    static void
+    rotate_and_store(const SymmetricTensor<2, 3> &stress,
+                     const Rotation<dim>         &R,
+                     double                      *stored)
+    {
+      if (R.identity)
+        {
+          for (unsigned int k = 0; k < 6; ++k)
+            stored[k] = stress.access_raw_entry(k);
+          return;
+        }
+      apply(stress,
+            R,
+            [stored](const unsigned int i,
+                     const unsigned int j,
+                     const double       value) {
+              stored[SymmetricTensor<2, 3>::component_to_unrolled_index(
+                TableIndices<2>(i, j))] = value;
+            });
+      // (The plane strain rotation is about z.)
       if constexpr (dim == 2)
-        {
-          const double c = R.c, s = R.s;
-          const double xx = stress[0][0], yy = stress[1][1],
-                       xy = stress[0][1];
-          const double cc = c * c, ss = s * s, cs = c * s;
-          stress[0][0] = cc * xx + 2. * cs * xy + ss * yy;
-          stress[1][1] = ss * xx - 2. * cs * xy + cc * yy;
-          stress[0][1] = cs * (yy - xx) + (cc - ss) * xy;
-          const double xz = stress[0][2], yz = stress[1][2];
-          stress[0][2] = c * xz + s * yz;
-          stress[1][2] = -s * xz + c * yz;
-        }
-      else
-        {
-          // Q sigma Q^T for symmetric sigma: A = Q sigma, then only the
-          // upper triangle of A Q^T (45 products instead of 54 and the
-          // symmetrisation of a full product), entry by entry.
-          const auto  &Q = R.Q;
-          const double s[3][3] = {{stress[0][0], stress[0][1], stress[0][2]},
-                                  {stress[0][1], stress[1][1], stress[1][2]},
-                                  {stress[0][2], stress[1][2], stress[2][2]}};
-          double       a[3][3];
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int k = 0; k < 3; ++k)
-              a[i][k] = Q[i][0] * s[0][k] + Q[i][1] * s[1][k] + Q[i][2] * s[2][k];
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = i; j < 3; ++j)
-              stress[i][j] =
-                a[i][0] * Q[j][0] + a[i][1] * Q[j][1] + a[i][2] * Q[j][2];
-        }
+        stored[2] = stress[2][2];
     }
 
     /**
@@ -177,6 +187,53 @@ namespace MPM
     }
 
   private:
+    /**
+     * Q sigma Q^T of @p stress for the rotation @p R (not the identity),
+     * each new entry (i, j), i <= j, handed to @p store(i, j, value) once
+     * every entry of @p stress has been read (so @p store may write into
+     * @p stress). In 2D the rotation about z leaves sigma_zz, which is not
+     * handed on.
+     */
+    template <int dim, typename Store>
+    static void
+    apply(const SymmetricTensor<2, 3> &stress,
+          const Rotation<dim>         &R,
+          const Store                 &store)
+    {
+      if constexpr (dim == 2)
+        {
+          const double c = R.c, s = R.s;
+          const double xx = stress[0][0], yy = stress[1][1],
+                       xy = stress[0][1];
+          const double xz = stress[0][2], yz = stress[1][2];
+          const double cc = c * c, ss = s * s, cs = c * s;
+          store(0, 0, cc * xx + 2. * cs * xy + ss * yy);
+          store(1, 1, ss * xx - 2. * cs * xy + cc * yy);
+          store(0, 1, cs * (yy - xx) + (cc - ss) * xy);
+          store(0, 2, c * xz + s * yz);
+          store(1, 2, -s * xz + c * yz);
+        }
+      else
+        {
+          // Q sigma Q^T for symmetric sigma: A = Q sigma, then only the
+          // upper triangle of A Q^T (45 products instead of 54 and the
+          // symmetrisation of a full product), entry by entry.
+          const auto  &Q = R.Q;
+          const double s[3][3] = {{stress[0][0], stress[0][1], stress[0][2]},
+                                  {stress[0][1], stress[1][1], stress[1][2]},
+                                  {stress[0][2], stress[1][2], stress[2][2]}};
+          double       a[3][3];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int k = 0; k < 3; ++k)
+              a[i][k] = Q[i][0] * s[0][k] + Q[i][1] * s[1][k] + Q[i][2] * s[2][k];
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = i; j < 3; ++j)
+              store(i,
+                    j,
+                    a[i][0] * Q[j][0] + a[i][1] * Q[j][1] + a[i][2] * Q[j][2]);
+        }
+    }
+
     Type rate = Type::none;
   };
 } // namespace MPM
