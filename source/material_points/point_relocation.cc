@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <utility>
@@ -165,7 +166,7 @@ namespace MPM
             else
               leavers_of_this_step.push_back(point);
           }
-        stats.n_points_mapped += particle_handler.n_particles_in_cell(cell);
+        stats.n_points_mapped += static_cast<unsigned int>(std::distance(points.begin(), points.end()));
         it = points.end();
       }
 

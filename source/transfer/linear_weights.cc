@@ -7,6 +7,8 @@
 #include <mpm/transfer/linear_weights.h>
 #include <mpm/transfer/particle_grid_passes.templates.h>
 
+#include <iterator>
+
 namespace MPM
 {
   template <int dim>
@@ -33,8 +35,10 @@ namespace MPM
         const typename Triangulation<dim>::active_cell_iterator cell =
           it->get_surrounding_cell();
         const auto points = particle_handler.particles_in_cell(cell);
+        // Counted along the range: n_particles_in_cell() looks the cell
+        // up again (a tenth of the 2D block's shape functions).
         this->add_active_cell(cell->active_cell_index(),
-                              particle_handler.n_particles_in_cell(cell),
+                              static_cast<unsigned int>(std::distance(points.begin(), points.end())),
                               points.begin());
         it = points.end();
       }

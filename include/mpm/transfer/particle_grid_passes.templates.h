@@ -36,28 +36,35 @@ namespace MPM
       [&](const unsigned int chunk,
           const unsigned int first,
           const unsigned int last) {
+        // Zero once here, and each target's sums again after they are
+        // handed on: zeroing all of them at the start of every cell
+        // compiled to a 'rep stos' (7 % of the 2D particle-to-grid pass).
+        std::array<VertexValues, n_targets> sums;
         for (unsigned int c = first; c < last; ++c)
           {
-            std::array<VertexValues, n_targets> sums;
             body(c, chunk, sums);
             const ActiveCell   &cell   = this->active_cells[c];
             const unsigned char shared = cell.vertices_shared_with_other_chunks;
             for (unsigned int f = 0; f < n_targets; ++f)
-              if (targets[f] != nullptr)
-                {
-                  if (shared == 0)
-                    this->add_to_nodes(cell, sums[f], *targets[f]);
-                  else
-                    {
-                      for (unsigned int i = 0; i < n_vertices; ++i)
-                        if ((shared & (1u << i)) == 0)
-                          for (unsigned int d = 0; d < dim; ++d)
-                            targets[f]->local_element(cell.dofs[i][d]) +=
-                              sums[f][i][d];
-                      cell_sums[std::size_t(cell.border_index) * n_targets +
-                                f] = sums[f];
-                    }
-                }
+              {
+                if (targets[f] != nullptr)
+                  {
+                    if (shared == 0)
+                      this->add_to_nodes(cell, sums[f], *targets[f]);
+                    else
+                      {
+                        for (unsigned int i = 0; i < n_vertices; ++i)
+                          if ((shared & (1u << i)) == 0)
+                            for (unsigned int d = 0; d < dim; ++d)
+                              targets[f]->local_element(cell.dofs[i][d]) +=
+                                sums[f][i][d];
+                        cell_sums[std::size_t(cell.border_index) *
+                                    n_targets +
+                                  f] = sums[f];
+                      }
+                  }
+                sums[f] = VertexValues();
+              }
           }
       });
     for (std::size_t b = 0; b < this->cells_on_chunk_borders.size(); ++b)
