@@ -35,8 +35,8 @@ namespace MPM
         const typename Triangulation<dim>::active_cell_iterator cell =
           it->get_surrounding_cell();
         const auto points = particle_handler.particles_in_cell(cell);
-        // Counted along the range: n_particles_in_cell() looks the cell
-        // up again (a tenth of the 2D block's shape functions).
+        // Counted along the range at hand: n_particles_in_cell() would
+        // look the cell up again.
         this->add_active_cell(cell->active_cell_index(),
                               static_cast<unsigned int>(std::distance(points.begin(), points.end())),
                               points.begin());
