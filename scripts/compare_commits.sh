@@ -36,9 +36,10 @@ done
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-# The 2D block of scripts/throughput_benchmark.sh (one point per 4 / 1 of a
-# cell ... see there) and the 3D block of scripts/throughput_3d.sh, with
-# their numbers of steps; the landslide refined once; the flume.
+# The cases: the 2D block of scripts/throughput_benchmark.sh (2 x 2 points
+# per cell, the block's cells only) with its numbers of steps (241 at 1e5
+# points, 24 at 1e6), the 3D block of scripts/throughput_3d.sh (123
+# steps), the landslide refined once (0.3 s), the shipped flume.
 block2d() { # CELLS END MODEL SCHEME FLIP WEIGHTS
   echo "throughput.prm|Mesh/Generator arguments={$1, $1} : 0, 0 : 1, 1 : true|Material points/block/Box=0, 0 : 1, 1|Materials/block/Model=$3|Time stepping/Update scheme=$4|Transfer/FLIP fraction=$5|Transfer/Particle-grid weights=$6|Time stepping/End time=$2"
 }

@@ -166,7 +166,8 @@ namespace MPM
             else
               leavers_of_this_step.push_back(point);
           }
-        stats.n_points_mapped += static_cast<unsigned int>(std::distance(points.begin(), points.end()));
+        stats.n_points_mapped += static_cast<unsigned int>(
+          std::distance(points.begin(), points.end()));
         it = points.end();
       }
 

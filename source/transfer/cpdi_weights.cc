@@ -360,7 +360,8 @@ namespace MPM
         this->point_cell_size.push_back(this->context.grid.cell_size(cell));
         point_cells.push_back(cell);
         this->point_cell_first_point.push_back(points.begin());
-        n_counted += static_cast<unsigned int>(std::distance(points.begin(), points.end()));
+        n_counted += static_cast<unsigned int>(
+          std::distance(points.begin(), points.end()));
         it = points.end();
       }
     this->point_cell_begin.push_back(n_counted);

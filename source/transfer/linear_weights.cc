@@ -38,7 +38,8 @@ namespace MPM
         // Counted along the range at hand: n_particles_in_cell() would
         // look the cell up again.
         this->add_active_cell(cell->active_cell_index(),
-                              static_cast<unsigned int>(std::distance(points.begin(), points.end())),
+                              static_cast<unsigned int>(
+                                std::distance(points.begin(), points.end())),
                               points.begin());
         it = points.end();
       }
