@@ -7,7 +7,8 @@
 #    must fail with a non-zero exit code; their stderr is compared instead.
 #    With RANKS > 1 (tests NAME.mpirun=N), mpm runs on RANKS MPI ranks;
 #    each rank on "# threads: N" threads (default 1, or $MPM_TEST_THREADS).
-#  - unit tests (EXECUTABLE set): run it in WORKDIR, compare its stdout.
+#  - unit tests (EXECUTABLE set): run it in WORKDIR (with the ';'-separated
+#    list ARGS, if set), compare its stdout.
 # Tolerances: a line "# numdiff: <options>" in the .prm (or in the unit
 # test's expected output's first line), else -a 1e-10 -r 1e-8.
 file(REMOVE_RECURSE ${WORKDIR})
@@ -140,7 +141,7 @@ if(PRM)
   set(_result ${WORKDIR}/report.txt)
 else()
   execute_process(
-    COMMAND ${EXECUTABLE}
+    COMMAND ${EXECUTABLE} ${ARGS}
     WORKING_DIRECTORY ${WORKDIR}
     RESULT_VARIABLE _rc
     OUTPUT_FILE ${WORKDIR}/output.txt
