@@ -113,7 +113,7 @@ namespace MPM
      * APIC: each entry's xbar_p - x_0, its point's affine centre xbar_p =
      * x_p + sum_c alpha_c (x_c - x_p) (the mean of the weights' centres,
      * about which sum_i w_ip (x_i - xbar_p) = 0, so the affine part adds no
-     * momentum; xbar_p = x_p unless a corner was moved onto a cell)
+     * momentum; xbar_p = x_p for a parallelogram domain)
      * relative to the first vertex x_0 of the entry's cell.
      */
     std::vector<Tensor<1, dim>> entry_centre;

@@ -46,10 +46,12 @@ namespace MPM
    * point (x_p + s D_c, the largest s in (0, 1] found by bisection, kept
    * in the point's last slot, doubled if possible every 8th step), so it
    * stays centred on the point: a point at a wall tends to the linear
-   * weights there and moves with the wall's nodes. A corner within 2 % of
-   * a cell's reference square is moved onto the cell instead (domains
-   * built from the Jacobian at a point poke out of a distorted boundary
-   * cell by a little).
+   * weights there and moves with the wall's nodes. That holds for a
+   * corner just outside too (domains built from the Jacobian at a point
+   * poke out of a distorted boundary cell by a little): moved onto the
+   * cell instead, it would put the domain's centroid, whose velocity
+   * moves the point, off the point, towards the inside, and a point next
+   * to a wall would creep through it.
    */
   template <int dim>
   class PointDomains
@@ -179,8 +181,7 @@ namespace MPM
     /**
      * corner_weights() of the parallelepiped x_p + R s in closed form:
      * alpha_c = 2^-dim, beta_c = R^{-T} s_c / 2^dim. The common case: a
-     * domain is a parallelepiped on a mesh of parallelograms, and as long
-     * as no corner was moved onto a cell.
+     * domain is a parallelepiped on a mesh of parallelograms.
      */
     static void
     parallelepiped_weights(const Tensor<2, dim>                  &R,
