@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
@@ -9,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace MPM
@@ -75,6 +77,15 @@ namespace MPM
                           "for a layer that yields (a shear band): the "
                           "report then lists its mean stress and the "
                           "profile of its plastic shear strain.");
+        prm.declare_entry(
+          "Averaging window",
+          "",
+          Patterns::Anything(),
+          "'x_min, x_max' (m): the mean stress is taken over the points "
+          "whose current x lies in this window; empty: over all points. "
+          "For a layer of finite width with free ends, whose stress is "
+          "homogeneous only away from the ends (a window a layer height or "
+          "more from each end).");
         prm.declare_entry("Profile bin",
                           "0.05",
                           Patterns::Double(0),
@@ -92,6 +103,20 @@ namespace MPM
         jaumann = prm.get("Objective stress rate") == "jaumann";
         closed_form = prm.get_bool("Closed form");
         bin         = prm.get_double("Profile bin");
+        const std::string window_text = prm.get("Averaging window");
+        if (!window_text.empty())
+          {
+            const auto bounds = Utilities::split_string_list(window_text);
+            check_input(bounds.size() == 2,
+                        "Postprocess/simple shear/Averaging window = '" +
+                          window_text + "': give 'x_min, x_max' or leave it "
+                          "empty.");
+            window = {{Utilities::string_to_double(bounds[0]),
+                       Utilities::string_to_double(bounds[1])}};
+            check_input(window[0] < window[1],
+                        "Postprocess/simple shear/Averaging window = '" +
+                          window_text + "': x_min must be below x_max.");
+          }
         if (!closed_form)
           check_input(bin > 0 && bin <= height,
                       "Postprocess/simple shear/Profile bin = " +
@@ -146,11 +171,14 @@ namespace MPM
           }
         const auto   exact = exact_stress(gamma);
         const auto  &grid  = simulator.get_grid();
-        // Largest deviations of single points at the end: stress / G and
+        // Largest deviations of single points (in the averaging window) at
+        // the end: stress / G and
         // velocity / (gamma_dot H).
         std::array<double, 2> worst{{0., 0.}};
         for (const auto &point : simulator.get_particle_handler())
           {
+            if (!in_window(simulator, point.get_location()))
+              continue;
             const auto props = point.get_properties();
             const auto sigma = grid.to_scene_frame(
               read_symmetric_tensor(&props[Layout::stress]));
@@ -176,7 +204,12 @@ namespace MPM
                << (jaumann ? "Jaumann: sigma_xy = G sin(gamma), sigma_xx = "
                              "-sigma_yy = G (1 - cos(gamma))" :
                              "fixed axes: sigma_xy = G gamma")
-               << ")\n"
+               << ")"
+               << (std::isinf(window[0]) ?
+                     std::string() :
+                     ", points with x in [" + std::to_string(window[0]) +
+                       ", " + std::to_string(window[1]) + "] m")
+               << "\n"
                << "#  gamma    sxy/G mpm    sxy/G exact    sxx/G mpm    "
                   "sxx/G exact    syy/G mpm    syy/G exact   max error\n"
                << table
@@ -262,14 +295,17 @@ namespace MPM
                  -modulus * (1 - std::cos(gamma))}};
       }
 
-      /// Volume-weighted mean (sigma_xy, sigma_xx, sigma_yy), scene frame.
-      static std::array<double, 3>
-      mean_stress(const Simulator<dim> &simulator)
+      /// Volume-weighted mean (sigma_xy, sigma_xx, sigma_yy), scene frame,
+      /// over the points in the averaging window.
+      std::array<double, 3>
+      mean_stress(const Simulator<dim> &simulator) const
       {
         using Layout = PropertyLayout<dim>;
         std::vector<double> sums(4, 0.);
         for (const auto &point : simulator.get_particle_handler())
           {
+            if (!in_window(simulator, point.get_location()))
+              continue;
             const auto   props  = point.get_properties();
             const double volume = props[Layout::volume];
             const auto   sigma  = simulator.get_grid().to_scene_frame(
@@ -284,6 +320,19 @@ namespace MPM
         return {{sums[0] / v, sums[1] / v, sums[2] / v}};
       }
 
+      /// Whether a point (mesh frame) lies in the averaging window.
+      bool
+      in_window(const Simulator<dim> &simulator, const Point<dim> &x) const
+      {
+        if (window[0] == -std::numeric_limits<double>::infinity() &&
+            window[1] == std::numeric_limits<double>::infinity())
+          return true;
+        const double x_scene = simulator.get_grid().to_scene_frame(x)[0];
+        return x_scene >= window[0] && x_scene <= window[1];
+      }
+
+      std::array<double, 2> window{{-std::numeric_limits<double>::infinity(),
+                                    std::numeric_limits<double>::infinity()}};
       double      rate = 0.1, modulus = 1e6, base = 0, height = 1;
       bool        jaumann        = true;
       bool        closed_form    = true;

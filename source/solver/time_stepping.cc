@@ -42,11 +42,16 @@ namespace MPM
                         Patterns::Double(0),
                         "Upper bound of the adaptive time step, in s.");
       prm.declare_entry("Update scheme",
-                        "USF",
+                        "MUSL",
                         Patterns::Selection("USF|USL|MUSL"),
-                        "When the stress is updated: USF (Update Stress "
-                        "First, before the nodal momentum update), USL "
-                        "(Update Stress Last), MUSL (Modified USL).");
+                        "When the stress is updated: MUSL (Modified Update "
+                        "Stress Last, the default: the stress from the "
+                        "velocity remapped from the updated points; the "
+                        "scheme of every converged granular result in "
+                        "doc/), USF (Update Stress First, before the nodal "
+                        "momentum update; with the FLIP/PIC blend unstable "
+                        "where granular flow stops against a base, "
+                        "doc/flume.md), USL (Update Stress Last).");
       prm.declare_entry("Local damping",
                         "0",
                         Patterns::Anything(),

@@ -21,15 +21,17 @@ namespace MPM
     prm.enter_subsection("Transfer");
     prm.declare_entry(
       "Particle-grid weights",
-      "linear",
+      "cpdi",
       Patterns::Selection(ParticleGridWeightsRegistry<dim>::names()),
       "The weights by which points and nodes exchange mass, momentum and "
-      "force. 'linear': the mesh's bilinear functions at the point (a "
-      "point acts on the vertices of its cell only: forces jump when it "
-      "crosses a cell edge). 'cpdi': the point's parallelogram domain, "
+      "force. 'cpdi' (the default): the point's parallelogram domain, "
       "which deforms with it, averages the mesh functions over it "
-      "(Sadeghirad et al. 2011); smooth across cell edges, about four "
-      "times the transfer cost (doc/convergence.md).");
+      "(Sadeghirad et al. 2011); smooth across cell edges, the weights "
+      "on which APIC converges (doc/convergence.md). 'linear': the "
+      "mesh's bilinear functions at the point (a point acts on the "
+      "vertices of its cell only: forces jump when it crosses a cell "
+      "edge, the cell-crossing noise that grows under refinement); "
+      "cheaper (doc/performance.md has the ratio).");
     prm.leave_subsection();
     PointDomains<dim>::declare_parameters(prm);
   }
