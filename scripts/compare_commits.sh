@@ -20,8 +20,9 @@
 #
 # Usage: scripts/compare_commits.sh OLD_ROOT [N (default 3)] [CASE ...]
 # Cases (default all but flume): block_le block_mc block_cpdi block_le_1e6
-# block_mc_1e6 block3d_le block3d_mc landslide flume_0.3 flume_0.3_apic_cpdi
-# flume.
+# block_mc_1e6 block3d_le block3d_mc landslide landslide_apic_cpdi flume_0.3
+# flume_0.3_apic_cpdi flume (the blend's cases name it: an older tree's
+# files may ship another transfer).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 old_root="$(cd "${1:?usage: compare_commits.sh OLD_ROOT [N] [CASE ...]}" && pwd)"
@@ -46,6 +47,10 @@ block2d() { # CELLS END MODEL SCHEME FLIP WEIGHTS
 block3d() { # MODEL SCHEME FLIP
   echo "throughput_3d.prm|Mesh/Generator arguments={23, 23, 23} : 0, 0, 0 : 1, 1, 1 : true|Material points/block/Box=0, 0, 0 : 1, 1, 1|Materials/block/Model=$1|Time stepping/Update scheme=$2|Transfer/FLIP fraction=$3|Time stepping/End time=0.0309"
 }
+# The transfers, written out: the shipped granular files changed from the
+# blend to APIC + CPDI (commit 37fff68), so each case names its own.
+blend="Transfer/Scheme=flip/pic blend|Transfer/FLIP fraction=0.98|Transfer/Particle-grid weights=linear"
+apic_cpdi="Transfer/Scheme=apic|Transfer/Particle-grid weights=cpdi"
 spec() {
   case "$1" in
     block_le) block2d 158 0.0088 "linear elastic" USF 1 linear ;;
@@ -55,10 +60,11 @@ spec() {
     block_mc_1e6) block2d 500 0.000277 "mohr coulomb" MUSL 0 linear ;;
     block3d_le) block3d "linear elastic" USF 1 ;;
     block3d_mc) block3d "mohr coulomb" MUSL 0 ;;
-    landslide) echo "landslide_valley_3d.prm|Mesh/Global refinements=1|Material points/slide/Points per cell=3|Time stepping/End time=0.3|Output/Write point file=false" ;;
-    flume_0.3) echo "flume_usgs.prm|Time stepping/End time=0.3" ;;
-    flume_0.3_apic_cpdi) echo "flume_usgs.prm|Time stepping/End time=0.3|Transfer/Scheme=apic|Transfer/Particle-grid weights=cpdi" ;;
-    flume) echo "flume_usgs.prm" ;;
+    landslide) echo "landslide_valley_3d.prm|Mesh/Global refinements=1|Material points/slide/Points per cell=3|Time stepping/End time=0.3|Output/Write point file=false|$blend|Transfer/FLIP fraction time step=0.023" ;;
+    landslide_apic_cpdi) echo "landslide_valley_3d.prm|Mesh/Global refinements=1|Material points/slide/Points per cell=3|Time stepping/End time=0.3|Output/Write point file=false|$apic_cpdi" ;;
+    flume_0.3) echo "flume_usgs.prm|Time stepping/End time=0.3|$blend|Transfer/FLIP fraction time step=3.3e-5" ;;
+    flume_0.3_apic_cpdi) echo "flume_usgs.prm|Time stepping/End time=0.3|$apic_cpdi" ;;
+    flume) echo "flume_usgs.prm|$blend|Transfer/FLIP fraction time step=3.3e-5" ;;
     *) echo "compare_commits.sh: unknown case '$1'" >&2; exit 1 ;;
   esac
 }
