@@ -102,6 +102,28 @@ namespace MPM
     {
       return point_cell_map[p];
     }
+
+    /**
+     * Whether APIC may fit the affine matrix of the point with properties
+     * @p props to the end-of-step grid velocity (C_p = B_p D_p^-1) under
+     * MUSL: where its domain has at least half its size. A domain shrunk
+     * further (its corners beyond a wall, or a lone point dilated far
+     * beyond its cell and scaled down to fit its patch) gives nearly the
+     * linear weights, whose second moment vanishes towards cell edges:
+     * there the fit amplified a resting point's velocities into C_p of
+     * 1e4 1/s, which the base's normal constraint turned into an upward
+     * kick (the collapse at CFL 0.9, doc/transfers.md). Such a point takes
+     * C_p from the remapped velocity, as with linear weights.
+     */
+    bool
+    fit_is_stable(const double *props) const
+    {
+      return props[this->own_slot + PointDomains<dim>::scale_slot] >=
+             minimum_fit_scale;
+    }
+
+    /// The smallest domain scale at which fit_is_stable().
+    static constexpr double minimum_fit_scale = 0.5;
     /// @}
 
     PointDomains<dim> point_domains;

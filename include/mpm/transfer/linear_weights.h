@@ -61,6 +61,14 @@ namespace MPM
     {
       return nullptr;
     }
+
+    /// No point's second moment is bounded below (it vanishes on cell
+    /// edges): under MUSL APIC takes C_p from the remapped velocity.
+    static bool
+    fit_is_stable(const double *)
+    {
+      return false;
+    }
     /// @}
   };
 } // namespace MPM

@@ -52,10 +52,11 @@ namespace MPM
    * with APIC, each entry maps its point's affine field v_p + C_p dx_i, and
    * the point's new C_p is fitted to the end-of-step grid velocity,
    * C_p = B_p D_p^{-1} summed over its entries (Apic::fit_affine()). Under
-   * MUSL on weights whose second moment can vanish (linear:
-   * second_moment_bounded_below() is false) C_p is instead the velocity
-   * gradient of the MUSL remap (update_stress()) and the remap is PIC's:
-   * fitted there, C_p was measured unstable (doc/transfers.md).
+   * MUSL at points whose second moment can vanish (Weights::fit_is_stable()
+   * false: every point with linear weights, a point whose CPDI domain is
+   * shrunk below half its size) C_p is instead the velocity gradient of the
+   * MUSL remap (update_stress()) and the point's remap is PIC's: fitted
+   * there, C_p was measured unstable (doc/transfers.md).
    *
    * Each pass loops over the active cells and their entries, reads a
    * cell's nodal values once for all its entries and adds its sums to the

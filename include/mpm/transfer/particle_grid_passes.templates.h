@@ -343,12 +343,14 @@ namespace MPM
     using Layout           = PropertyLayout<dim>;
     NodalFields &nodal     = this->context.nodal;
     auto        &updater   = this->context.point_update;
-    // APIC: the new C_p is fitted here, except under MUSL on weights whose
-    // second moment can vanish: there it is the gradient of the remapped
-    // velocity (update_stress()) and the remap below is PIC's.
-    const bool fit_affine =
-      this->affine() &&
-      (!remap_momentum || this->second_moment_bounded_below());
+    // APIC: the new C_p is fitted here, except under MUSL where a point's
+    // second moment can vanish (linear weights; a shrunk CPDI domain,
+    // Weights::fit_is_stable()): there it is the gradient of the remapped
+    // velocity (update_stress()) and the point's remap below is PIC's.
+    const bool fit_affine = this->affine();
+    const auto fits       = [&](const double *props) {
+      return fit_affine && (!remap_momentum || weights().fit_is_stable(props));
+    };
     // The momentum (v_p + C_p dx_i) m_p w_ip a point maps back under MUSL,
     // into the per-vertex sums @p remapped of entry k's cell.
     // (Where the entries are not the points, from point_transfer_data,
@@ -411,7 +413,8 @@ namespace MPM
                 updater.advance(
                   point, props, a, v_new, cell.map, chunk_findings[chunk]);
                 Tensor<2, dim> C;
-                if (fit_affine)
+                const bool     fitted = fits(props);
+                if (fitted)
                   {
                     AffineFitSums sums;
                     add_to_affine_fit(cell, k, v_node, sums);
@@ -422,7 +425,7 @@ namespace MPM
                                               props + this->transfer_slot);
                   }
                 if (remap_momentum)
-                  remap(cell, k, fit_affine ? &C : nullptr, remapped[0]);
+                  remap(cell, k, fitted ? &C : nullptr, remapped[0]);
               }
           });
         v_max2 = record_chunk_findings();
@@ -481,7 +484,7 @@ namespace MPM
                               point_sum_v[p],
                               weights().cell_map_of_point(p),
                               chunk_findings[chunk]);
-              if (fit_affine)
+              if (fits(this->points[p]))
                 {
                   const AffineFitSums &sums = point_affine_fit[p];
                   point_affine[p] =
@@ -509,12 +512,13 @@ namespace MPM
                 const ActiveCell  &cell = this->active_cells[c];
                 const unsigned int end  = cell.first_entry + cell.n_points;
                 for (unsigned int k = cell.first_entry; k < end; ++k)
-                  remap(cell,
-                        k,
-                        fit_affine ?
-                          &point_affine[weights().point_of_entry(k)] :
-                          nullptr,
-                        remapped[0]);
+                  {
+                    const unsigned int p = weights().point_of_entry(k);
+                    remap(cell,
+                          k,
+                          fits(this->points[p]) ? &point_affine[p] : nullptr,
+                          remapped[0]);
+                  }
               });
           }
       }
@@ -532,10 +536,12 @@ namespace MPM
     TimerOutput::Scope t(this->context.timer, "stress update");
     const auto        &updater = this->context.point_update;
     const bool         average = updater.averages_volumetric_strain();
-    // MUSL with APIC where update_points_from_grid() did not fit C_p: it is
-    // this velocity gradient (Apic::store_affine()).
-    const bool store_gradient =
-      set_affine && !this->second_moment_bounded_below();
+    // MUSL with APIC, at the points whose C_p update_points_from_grid()
+    // did not fit (Weights::fit_is_stable()): it is this velocity gradient
+    // (Apic::store_affine()).
+    const auto store_gradient = [&](const double *props) {
+      return set_affine && !weights().fit_is_stable(props);
+    };
     // Entry k's velocity gradient (nodal values @p v_node of its cell).
     const auto entry_gradient = [this](const unsigned int  k,
                                        const VertexValues &v_node) {
@@ -551,8 +557,9 @@ namespace MPM
       double *props = this->points[p];
       const double volume_factor =
         updater.update_stress(props, grad_v, cell_size, found);
+      const bool gradient_is_affine = store_gradient(props);
       weights().deform_with_point(props, grad_v, volume_factor);
-      if (store_gradient)
+      if (gradient_is_affine)
         Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
     };
     if constexpr (Weights::entries_are_points)
@@ -588,7 +595,7 @@ namespace MPM
                 update_point(k,
                              average ? (*gradients)[q] :
                                        entry_gradient(k, v_node),
-                             store_gradient ?
+                             store_gradient(this->points[k]) ?
                                Apic<dim>::second_moment(
                                  this->shape_functions[k].value,
                                  weights().node_offsets(cell, k)) :
@@ -612,7 +619,12 @@ namespace MPM
               point_gradients[weights().point_of_entry(k)] +=
                 entry_gradient(k, v_node);
           }
-        if (store_gradient)
+        // The second moments, if a point takes the gradient as C_p.
+        bool any_gradient = false;
+        for (unsigned int p = 0; set_affine && p < n_points && !any_gradient;
+             ++p)
+          any_gradient = store_gradient(this->points[p]);
+        if (any_gradient)
           second_moments(point_second_moment);
         // The points in chunks of their own cells (point_cell_begin).
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
@@ -626,8 +638,9 @@ namespace MPM
           for (unsigned int p = begin; p < end; ++p)
             update_point(p,
                          point_gradients[p],
-                         store_gradient ? point_second_moment[p] :
-                                          Tensor<2, dim>(),
+                         store_gradient(this->points[p]) ?
+                           point_second_moment[p] :
+                           Tensor<2, dim>(),
                          point_cell_size[c],
                          chunk_findings[chunk]);
         });
