@@ -139,8 +139,9 @@ def run_level(args, out, refinements):
 
 
 def report_quantities(report):
-    """Every 'label: value' of the report's lines outside the tables; a line
-    'a: 1  b: 2' gives 'a' and 'a / b'."""
+    """Every 'label: value ...' of the report's lines outside the tables
+    (the first number after the label; what follows it, a unit or a time,
+    is not read); a line 'a: 1  b: 2' gives 'a' and 'a / b'."""
     quantities = {}
     section = ""
     for line in open(report):
@@ -152,7 +153,7 @@ def report_quantities(report):
             continue
         pairs = []
         for segment in re.split(r"\s{2,}", line.strip()):
-            m = re.match(r"(.+?):\s+(" + NUMBER + r")(?:\s+\S+)?$", segment)
+            m = re.match(r"(.+?):\s+(" + NUMBER + r")(?=\s|,|$)", segment)
             if m:
                 pairs.append((m.group(1), m.group(2)))
         first = None
