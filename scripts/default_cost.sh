@@ -3,8 +3,8 @@
 # the cheaper FLIP/PIC blend on linear weights, side by side: each case run
 # alternately on both paths, one thread, the minimum over N runs of the wall
 # time of the steps (mpm's 'Done' line), and the ratio default / blend
-# against the bound the default must meet (issue 48: the flume 1.3, the 2D
-# throughput block 2, the 3D landslide 1.5). Release build.
+# against the most it may cost (the flume 1.3, the 2D throughput block 2,
+# the 3D landslide 1.5). Release build.
 #
 # Cases: flume      prm/flume_usgs.prm to 0.3 s (CFL 0.5);
 #        block      prm/throughput.prm, 1e5 points (158 x 158 cells, 2 x 2
