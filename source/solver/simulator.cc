@@ -195,6 +195,7 @@ namespace MPM
       *partitioner);
     boundary_conditions.setup(grid, nodal.mass, &periodic_nodes);
     point_relocation.initialize(grid);
+    point_relocation.set_walls(boundary_conditions.constrained_boundary_ids());
     weights->setup_partition();
   }
 
@@ -516,6 +517,13 @@ namespace MPM
                "cell order "
             << located.n_reorders << " time(s) (" << located.reorder_seconds
             << " s).\n";
+    if (located.n_points_put_back > 0)
+      pcout << "Walls (rank 0): " << located.n_points_put_back
+            << " time(s) a point that had crossed a wall by a little was "
+               "put back onto it; the farthest by "
+            << located.largest_put_back << " m ("
+            << located.largest_put_back_fraction
+            << " of its cell; 'Wall overshoot tolerance').\n";
     if (!grid.periodic_boundaries.empty())
       pcout << "Periodic boundaries (rank 0): " << located.n_points_wrapped
             << " point move(s) through them.\n";

@@ -9,8 +9,10 @@
 
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/inverse_mapping.h>
+#include <mpm/grid/point_location.h>
 
 #include <memory>
+#include <set>
 #include <vector>
 
 namespace MPM
@@ -41,7 +43,16 @@ namespace MPM
    * points (locate_in_cell()) and relocate_leavers() the rest.
    * A point found in no cell (neither around its old cell nor by
    * GridTools::find_active_cell_around_point() in the whole mesh, which
-   * every rank's triangulation covers) has left the domain: it is reported
+   * every rank's triangulation covers) has crossed the boundary. If it
+   * crossed a wall of its old cell (a face on a boundary with a velocity
+   * condition, set_walls()) by at most 'Wall overshoot tolerance' of the
+   * cell, it is put back onto that face (put_back_onto_wall()): the mesh
+   * conforms to the ground, so a point sliding along it that dips below
+   * the piecewise-(bi)linear surface by a millimetre is outside the mesh,
+   * and the nodal velocities it moves with are tangent to the nodes'
+   * averaged normals, not to the faces between them (a point just past a
+   * node where the ground turns away, or on a twisted face, moves into
+   * it). Otherwise it has left the domain: it is reported
    * through the ParticleHandler's particle_lost signal, as deal.II's sort
    * would report it, and removed; whoever listens decides (the Simulator
    * stops the run or counts the point's mass). If any point, on any rank,
@@ -72,6 +83,18 @@ namespace MPM
      */
     void
     initialize(const BackgroundGrid<dim> &grid);
+
+    /**
+     * The boundary ids of the walls: the boundaries whose velocity
+     * condition keeps material from crossing them (every type but
+     * 'free'), onto which a point that crossed one by a little is put
+     * back (see the class documentation).
+     */
+    void
+    set_walls(const std::set<types::boundary_id> &wall_ids)
+    {
+      walls = wall_ids;
+    }
 
     /**
      * Update the cells and reference locations of all points of
@@ -178,6 +201,13 @@ namespace MPM
       unsigned long long n_reorders      = 0;
       /// Wall time spent in the reorderings.
       double             reorder_seconds = 0;
+      /// Points put back onto a wall they had crossed (put_back_onto_wall()).
+      unsigned long long n_points_put_back = 0;
+      /// The largest distance by which such a point was moved back, in
+      /// metres, and in the reference coordinates of its cell (a fraction
+      /// of the cell's width across the wall).
+      double largest_put_back = 0;
+      double largest_put_back_fraction = 0;
       /// Points moved through a periodic boundary (PeriodicBoundaries).
       unsigned long long n_points_wrapped = 0;
       /// The sum over those moves of the point's mass times its shift:
@@ -223,6 +253,26 @@ namespace MPM
     wrap(Point<dim> &x, const double *properties);
 
     /**
+     * A point at @p x that lies in no cell of the mesh and was last in
+     * @p old_cell: if it crossed one or more walls of that cell (faces on a
+     * boundary in walls) by at most overshoot_tolerance in the cell's
+     * reference coordinates, and no other face, set @p x onto the walls
+     * (the reference coordinates across each crossed wall set to the
+     * wall's, the map of the cell taken forward) and @p location to the
+     * cell it then lies in (the old cell, or, if the point also crossed
+     * into a neighbour along the wall, that neighbour, searched among
+     * @p candidates with @p invert_in). Returns whether it did; the point
+     * keeps its velocity and every property. Counted in the statistics.
+     */
+    template <typename InverseMap>
+    bool
+    put_back_onto_wall(const CellIterator              &old_cell,
+                       const InverseMap                &invert_in,
+                       const std::vector<CellIterator> &candidates,
+                       Point<dim>                      &x,
+                       PointLocation<dim>              &location);
+
+    /**
      * Reorder the storage after this fraction of the points moved to
      * another cell (counting a point every time it moves).
      */
@@ -231,6 +281,11 @@ namespace MPM
     unsigned long long n_moved_since_reorder = 0;
 
     bool                                   incremental = true;
+    /// The boundary ids of the walls (set_walls()).
+    std::set<types::boundary_id> walls;
+    /// 'Wall overshoot tolerance': how far beyond a wall of its cell, in
+    /// the cell's reference coordinates, a point is put back onto it.
+    double overshoot_tolerance = 0.25;
     InverseMappingType                     inverse_type = InverseMappingType::closed_form;
     std::unique_ptr<InverseMapping<dim>>   inverse_mapping;
     const BackgroundGrid<dim>             *grid = nullptr;
