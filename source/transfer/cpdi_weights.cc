@@ -316,37 +316,395 @@ namespace MPM
   }
 
 
+  /**
+   * The search for the corners of the points of one cell in that cell's
+   * patch (prepare(): one per cell holding points, on the thread that
+   * works on the cell). A corner is tried
+   *  1. in the cell it lay in in the last step (CornerHint: only where the
+   *     point's cell is not a parallelogram or parallelepiped), accepted
+   *     only where the ordered search would give the same cell;
+   *  2. in the cells of its direction from the point's cell
+   *     (cell_patch_directions: an affine cell), where that decides;
+   *  3. in every cell of the patch in order, the previous point's cell of
+   *     this corner first (the points of a cell are alike).
+   * 1 and 2 change the cost of the search, never its result: a corner on
+   * a face shared by several cells belongs to the first cell 3 tries.
+   */
   template <int dim>
-  double
-  CpdiWeights<dim>::prepare()
+  class CpdiWeights<dim>::PatchSearch
   {
-    auto       &particle_handler = this->context.particle_handler;
-    const auto &grid             = this->context.grid;
-    const unsigned int step      = this->context.step;
-    const unsigned int domain_slot = this->own_slot;
-    auto       &point_properties = this->points;
-    auto       &shape_functions  = this->shape_functions;
-    TimerOutput::Scope     t(this->context.timer, "shape functions");
-    constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
-    using CellIterator = typename Triangulation<dim>::active_cell_iterator;
-    using Layout       = PropertyLayout<dim>;
-    const unsigned int n_points =
-      particle_handler.n_locally_owned_particles();
-    point_properties.resize(n_points);
-    point_cell_map.resize(n_points);
+  public:
+    static constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
+    using Offsets = typename PointDomains<dim>::Offsets;
 
-    // This step's corners, n_corners per point in the order of the points
-    // (reused storage).
-    auto &corners = located_corners;
-    corners.resize(std::size_t(n_points) * n_corners);
-    const bool affine = this->affine();
-    if (affine)
-      point_centre.resize(n_points);
-    corner_hints.resize(particle_handler.get_property_pool().n_slots());
-    if (dim == 3)
-      corner_hint_xi.resize(corner_hints.size());
+    /// Where a point's corners lie: their positions, the cells holding
+    /// them (position in the patch, active_cell_index(), periodic image)
+    /// and their reference coordinates there.
+    struct Corners
+    {
+      std::array<Point<dim>, n_corners>    x;
+      std::array<Point<dim>, n_corners>    xi;
+      std::array<unsigned char, n_corners> position;
+      std::array<unsigned int, n_corners>  index;
+      std::array<unsigned char, n_corners> image;
+    };
 
-    // The cells holding points, with their first points.
+    PatchSearch(const CpdiWeights<dim> &weights, const CellIterator &cell);
+
+    /// Whether this cell's points keep hints (a cell that is not a
+    /// parallelogram or parallelepiped: in a mesh of those, search 3 finds
+    /// nearly every corner at its first test, each test is Cramer's rule,
+    /// and corners on the cells' edges, where points of a regular
+    /// arrangement put them, are not accepted by a hint unless it names
+    /// that same cell: the hints cost more than they save there, 5 % of
+    /// the throughput block).
+    const bool use_hints;
+
+    /**
+     * Whether every corner x_p + s D_c lies in the patch, and if so where
+     * (@p corners). @p hint: the point's hint if it was made in this cell
+     * (else nullptr); @p hint_xi (3D): its corners' last reference
+     * coordinates, where Newton's iteration starts.
+     */
+    bool
+    locate(const Point<dim>                        &x_p,
+           const Offsets                           &D,
+           const double                             s,
+           const CornerHint                        *hint,
+           const std::array<Point<dim>, n_corners> *hint_xi,
+           Corners                                 &corners);
+
+    /// The corners x_p + s D_c placed in the point's own cell, their
+    /// reference coordinates extrapolated if they lie just outside it (a
+    /// point on the patch's edge, with s tiny: the limit is the linear
+    /// weights).
+    void
+    place_in_own_cell(const Point<dim> &x_p,
+                      const Offsets    &D,
+                      const double      s,
+                      Corners          &corners) const;
+
+  private:
+    const BackgroundGrid<dim>        &grid;
+    const CellIterator                cell;
+    const std::vector<unsigned int>  &patch;
+    const std::vector<Tensor<1, dim>> &image_shifts;
+    /// Periodic boundaries: each patch cell's image (else nullptr).
+    const unsigned char              *image_of;
+    /// cell_patch_directions of the cell (empty unless it is affine).
+    const std::vector<unsigned char> &directions;
+    /// Whether no cell of the patch is mixed_direction.
+    const bool                        regular_patch;
+    /// Where search 2 or 3 (or an accepted hint) found each corner of the
+    /// cell's last point: tried first.
+    std::array<unsigned int, n_corners> last_found;
+
+    /// The patch cells' geometry, looked up when the first of the cell's
+    /// points needs search 2 or 3 (with hints most points of a cell that is
+    /// not a parallelogram never do).
+    bool looked_up = false;
+    std::array<const std::array<Point<dim>, n_corners> *, 64> vertices;
+    std::array<const BilinearCellMap *, 64>                   maps;
+    std::array<const ParallelepipedMap *, 64>                 parallelepipeds;
+    std::array<const ExtrudedCellMap *, 64>                   extruded;
+
+    void
+    look_up();
+
+    /// @p y in the frame of the patch's cell @p i (where its image lies,
+    /// the cell itself).
+    Point<dim>
+    in_frame(const unsigned int i, const Point<dim> &y) const
+    {
+      return image_of == nullptr ? y : y - image_shifts[image_of[i]];
+    }
+
+    /// Whether the patch's cell @p i holds corner @p c (then its reference
+    /// coordinates are in corners.xi[c]).
+    bool
+    holds(const unsigned int i, const unsigned int c, Corners &corners) const
+    {
+      return cell_contains<dim>(*vertices[i],
+                                maps[i],
+                                parallelepipeds[i],
+                                extruded[i],
+                                in_frame(i, corners.x[c]),
+                                corners.xi[c]);
+    }
+
+    /// Corner @p c found in the patch's cell @p i.
+    void
+    found_in(const unsigned int c, const unsigned int i, Corners &corners)
+    {
+      corners.position[c] = i;
+      corners.index[c]    = patch[i];
+      corners.image[c]    = image_of == nullptr ? 0 : image_of[i];
+      last_found[c]       = i;
+    }
+
+    /// Search 1 for every corner, side by side (in 2D their closed-form
+    /// inverse maps overlap): @p hit, which it decided.
+    void
+    try_hints(const CornerHint                        &hint,
+              const std::array<Point<dim>, n_corners> *hint_xi,
+              Corners                                 &corners,
+              std::array<bool, n_corners>             &hit);
+
+    /**
+     * Search 2 for corner @p c. It decides only where search 3 would give
+     * the same: a corner strictly inside a cell (farther than
+     * corner_hint_margin from its faces in reference coordinates) lies in
+     * no other cell of the patch, and in a regular patch a corner that is
+     * clearly in one direction (its reference coordinates in the point's
+     * cell that far from 0 and 1) lies in no cell of another direction.
+     * Otherwise (a corner on or next to a face) it is undecided.
+     */
+    Search
+    directed(const unsigned int c, Corners &corners);
+
+    /// Search 3 for corner @p c: whether any cell of the patch holds it.
+    bool
+    ordered(const unsigned int c, Corners &corners);
+  };
+
+
+  template <int dim>
+  CpdiWeights<dim>::PatchSearch::PatchSearch(const CpdiWeights<dim> &weights,
+                                             const CellIterator     &cell)
+    : use_hints(dim == 2 ?
+                  !weights.context.grid.bilinear_map(cell).is_parallelogram() :
+                  !weights.context.grid
+                     .parallelepiped_map(cell->active_cell_index())
+                     .is_affine())
+    , grid(weights.context.grid)
+    , cell(cell)
+    , patch(weights.cell_patches[cell->active_cell_index()])
+    , image_shifts(weights.image_shifts)
+    , image_of(weights.cell_patch_images.empty() ?
+                 nullptr :
+                 weights.cell_patch_images[cell->active_cell_index()].data())
+    , directions(weights.cell_patch_directions[cell->active_cell_index()])
+    , regular_patch(!directions.empty() &&
+                    std::find(directions.begin(),
+                              directions.end(),
+                              mixed_direction) == directions.end())
+  {
+    last_found.fill(0);
+  }
+
+
+  template <int dim>
+  void
+  CpdiWeights<dim>::PatchSearch::look_up()
+  {
+    AssertThrow(patch.size() <= 64, ExcInternalError());
+    for (unsigned int i = 0; i < patch.size(); ++i)
+      {
+        vertices[i]        = &grid.cell_vertices(patch[i]);
+        maps[i]            = dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
+        parallelepipeds[i] = dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
+        extruded[i]        = grid.extruded_map(patch[i]);
+      }
+    looked_up = true;
+  }
+
+
+  template <int dim>
+  bool
+  CpdiWeights<dim>::PatchSearch::locate(
+    const Point<dim>                        &x_p,
+    const Offsets                           &D,
+    const double                             s,
+    const CornerHint                        *hint,
+    const std::array<Point<dim>, n_corners> *hint_xi,
+    Corners                                 &corners)
+  {
+    for (unsigned int c = 0; c < n_corners; ++c)
+      corners.x[c] = x_p + s * D[c];
+    std::array<bool, n_corners> hit{};
+    if (hint != nullptr)
+      try_hints(*hint, hint_xi, corners, hit);
+    for (unsigned int c = 0; c < n_corners; ++c)
+      {
+        if (hit[c])
+          continue;
+        if (!looked_up)
+          look_up();
+        const Search search =
+          directions.empty() ? Search::undecided : directed(c, corners);
+        if (search == Search::found)
+          continue;
+        // Outside every cell of the patch (beyond a wall, or a domain
+        // built from the Jacobian at the point that pokes out of a
+        // distorted boundary cell by O(distortion * size^2)): the caller
+        // shrinks the domain. Not moved onto the nearest cell: a domain
+        // with a corner moved has its centroid off the point, and S+ v,
+        // the velocity of the centroid, then keeps a component towards the
+        // wall however close the point comes: the top corner of a sheared
+        // layer crept through the driven top (doc/transfers.md, "Domains
+        // at walls").
+        if (search == Search::outside || !ordered(c, corners))
+          return false;
+      }
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  CpdiWeights<dim>::PatchSearch::try_hints(
+    const CornerHint                        &hint,
+    const std::array<Point<dim>, n_corners> *hint_xi,
+    Corners                                 &corners,
+    std::array<bool, n_corners>             &hit)
+  {
+    // Corner @p c in the frame of its hinted cell.
+    const auto hinted_frame = [&](const unsigned int c) {
+      return hint.image[c] == 0 ? corners.x[c] :
+                                  corners.x[c] - image_shifts[hint.image[c]];
+    };
+    if constexpr (dim == 2)
+      {
+        (void)hint_xi;
+        std::array<const BilinearCellMap *, n_corners> hinted_maps;
+        std::array<Point<dim>, n_corners>              z;
+        for (unsigned int c = 0; c < n_corners; ++c)
+          {
+            hinted_maps[c] = &grid.bilinear_map(hint.cell_index[c]);
+            z[c]           = hinted_frame(c);
+          }
+        BilinearCellMap::contains(hinted_maps, z, corners.xi, hit);
+      }
+    else
+      for (unsigned int c = 0; c < n_corners; ++c)
+        {
+          const unsigned int k = hint.cell_index[c];
+          if (grid.parallelepiped_map(k).is_affine())
+            hit[c] = cell_contains<dim>(grid.cell_vertices(k),
+                                        nullptr,
+                                        &grid.parallelepiped_map(k),
+                                        nullptr,
+                                        hinted_frame(c),
+                                        corners.xi[c]);
+          else
+            {
+              // In closed form if the cell is extruded, else by Newton's
+              // iteration from the corner's last reference coordinates
+              // (TrilinearCellMap).
+              InverseMappingResult<dim> result;
+              if (const ExtrudedCellMap *map = grid.extruded_map(k))
+                result = map->inverse(hinted_frame(c));
+              if (!result.success)
+                result = TrilinearCellMap(grid.cell_vertices(k))
+                           .inverse(hinted_frame(c), (*hint_xi)[c]);
+              hit[c] = result.success && inside_unit_cell(result.xi);
+              corners.xi[c] = result.xi;
+            }
+        }
+    for (unsigned int c = 0; c < n_corners; ++c)
+      // Accepted where search 3 would test this cell first (a corner on an
+      // edge belongs to the first cell tried that holds it), or where no
+      // other cell can hold the corner.
+      if (hit[c] &&
+          (hint.patch_position[c] == last_found[c] ||
+           inside_unit_cell(corners.xi[c], -corner_hint_margin)))
+        {
+          corners.position[c] = hint.patch_position[c];
+          corners.index[c]    = hint.cell_index[c];
+          corners.image[c]    = hint.image[c];
+          last_found[c]       = corners.position[c];
+        }
+      else
+        hit[c] = false;
+  }
+
+
+  template <int dim>
+  Search
+  CpdiWeights<dim>::PatchSearch::directed(const unsigned int c,
+                                          Corners           &corners)
+  {
+    constexpr double margin = corner_hint_margin;
+    Point<dim>      &xi     = corners.xi[c];
+    if (holds(0, c, corners))
+      {
+        if (!inside_unit_cell(xi, -margin))
+          return Search::undecided;
+        found_in(c, 0, corners);
+        return Search::found;
+      }
+    // The corner's direction from the cell (as the codes of
+    // cell_patch_directions).
+    unsigned int direction = 0;
+    for (unsigned int d = 0, stride = 1; d < dim; ++d, stride *= 3)
+      if (xi[d] > 1 + margin)
+        direction += 2 * stride;
+      else if (xi[d] > margin && xi[d] < 1 - margin)
+        direction += stride;
+      else if (!(xi[d] < -margin))
+        return Search::undecided;
+    for (unsigned int i = 1; i < patch.size(); ++i)
+      if (directions[i] == direction && holds(i, c, corners))
+        {
+          if (!inside_unit_cell(xi, -margin))
+            return Search::undecided;
+          found_in(c, i, corners);
+          return Search::found;
+        }
+    return regular_patch ? Search::outside : Search::undecided;
+  }
+
+
+  template <int dim>
+  bool
+  CpdiWeights<dim>::PatchSearch::ordered(const unsigned int c,
+                                         Corners           &corners)
+  {
+    // The previous point's cell of this corner first, then the others in
+    // the order of the patch.
+    const unsigned int first = last_found[c];
+    if (holds(first, c, corners))
+      {
+        found_in(c, first, corners);
+        return true;
+      }
+    for (unsigned int i = 0; i < patch.size(); ++i)
+      if (i != first && holds(i, c, corners))
+        {
+          found_in(c, i, corners);
+          return true;
+        }
+    return false;
+  }
+
+
+  template <int dim>
+  void
+  CpdiWeights<dim>::PatchSearch::place_in_own_cell(const Point<dim> &x_p,
+                                                   const Offsets    &D,
+                                                   const double      s,
+                                                   Corners &corners) const
+  {
+    for (unsigned int c = 0; c < n_corners; ++c)
+      {
+        corners.x[c]        = x_p + s * D[c];
+        corners.position[c] = 0;
+        corners.index[c]    = patch[0];
+        corners.image[c]    = image_of == nullptr ? 0 : image_of[0];
+        if constexpr (dim == 2)
+          corners.xi[c] = grid.bilinear_map(cell).inverse(corners.x[c]).xi;
+        else
+          corners.xi[c] =
+            inverse_map_closed_form(grid.cell_vertices(cell), corners.x[c]).xi;
+      }
+  }
+
+
+  template <int dim>
+  void
+  CpdiWeights<dim>::collect_point_cells()
+  {
+    auto &particle_handler = this->context.particle_handler;
     this->point_cell_begin.clear();
     this->point_cell_size.clear();
     point_cells.clear();
@@ -365,7 +723,158 @@ namespace MPM
         it = points.end();
       }
     this->point_cell_begin.push_back(n_counted);
-    AssertThrow(n_counted == n_points, ExcInternalError());
+    AssertThrow(n_counted == particle_handler.n_locally_owned_particles(),
+                ExcInternalError());
+  }
+
+
+  template <int dim>
+  std::string
+  CpdiWeights<dim>::locate_corners_of_cell(const unsigned int pc)
+  {
+    constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
+    using Layout                     = PropertyLayout<dim>;
+    const auto        &grid          = this->context.grid;
+    const unsigned int domain_slot   = this->own_slot;
+    const CellIterator &cell         = point_cells[pc];
+    PatchSearch         search(*this, cell);
+    typename PatchSearch::Corners corners;
+    auto point = this->point_cell_first_point[pc];
+    for (unsigned int p = this->point_cell_begin[pc];
+         p < this->point_cell_begin[pc + 1];
+         ++point, ++p)
+      {
+        double *props          = point->get_properties().data();
+        this->points[p]        = props;
+        point_cell_map[p]      = dim == 2 ? &grid.bilinear_map(cell) : nullptr;
+        const unsigned int hint_index = point->get_local_index();
+        CornerHint        &hint       = corner_hints[hint_index];
+        const CornerHint  *own_hint =
+          search.use_hints && hint.cell == cell->active_cell_index() ? &hint :
+                                                                        nullptr;
+        const auto *hint_xi =
+          dim == 3 ? &corner_hint_xi[hint_index] : nullptr;
+        // A point without a domain yet (new, or read from a file) gets the
+        // one of PointDomains::initial_domain().
+        auto D = PointDomains<dim>::read(props + domain_slot);
+        if (D[0].norm_square() == 0)
+          {
+            D = PointDomains<dim>::initial_domain(
+              grid.cell_vertices(cell),
+              point->get_reference_location(),
+              props[Layout::volume]);
+            PointDomains<dim>::write(D, props + domain_slot);
+            props[domain_slot + PointDomains<dim>::scale_slot] = 1;
+          }
+        const Point<dim> x_p    = point->get_location();
+        const auto       locate = [&](const double s) {
+          return search.locate(x_p, D, s, own_hint, hint_xi, corners);
+        };
+        // The scale s of the domain about the point: 1 unless a corner
+        // left the patch (beyond the mesh or a wall, or past the
+        // neighbours). Then the whole domain is shrunk about the point, so
+        // that it stays centred on it: a point next to a wall moves with
+        // the wall's nodes, as with linear weights, instead of being pulled
+        // through it by its far corners. The scale is kept from step to
+        // step (the last slot) and tried to be doubled every 8th step, so
+        // a point resting against a wall pays for one try most steps, not
+        // a bisection.
+        double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
+        const double grown =
+          this->context.step % 8 == 0 ? std::min(1., 2 * scale) : scale;
+        if (locate(grown))
+          scale = grown;
+        else if (!(scale < grown && locate(scale)))
+          {
+            double inside = 0, outside = std::min(scale, grown);
+            for (unsigned int i = 0; i < 10; ++i)
+              {
+                const double s = 0.5 * (inside + outside);
+                (locate(s) ? inside : outside) = s;
+              }
+            scale = inside;
+            if (inside == 0 || !locate(inside))
+              {
+                // The point sits on the patch's edge: a domain a millionth
+                // of its size.
+                scale = 1e-6;
+                search.place_in_own_cell(x_p, D, scale, corners);
+              }
+          }
+        if (search.use_hints)
+          {
+            hint.cell           = cell->active_cell_index();
+            hint.patch_position = corners.position;
+            hint.cell_index     = corners.index;
+            hint.image          = corners.image;
+            if constexpr (dim == 3)
+              corner_hint_xi[hint_index] = corners.xi;
+          }
+        std::array<double, n_corners>         alpha;
+        std::array<Tensor<1, dim>, n_corners> beta;
+        const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
+        if (PointDomains<dim>::is_parallelepiped(D, R))
+          PointDomains<dim>::parallelepiped_weights(scale * R, alpha, beta);
+        else if (!PointDomains<dim>::corner_weights(corners.x, alpha, beta))
+          {
+            std::ostringstream s;
+            s << "The CPDI domain of material point " << point->get_id()
+              << " at (" << x_p << ") is inverted (domain vectors " << R
+              << " as a parallelogram): the material it represents has "
+                 "turned inside out; reduce the time step.";
+            return s.str();
+          }
+        // The affine centre (see entry_centre).
+        if (this->affine())
+          {
+            Tensor<1, dim> shift;
+            for (unsigned int c = 0; c < n_corners; ++c)
+              shift += alpha[c] * (corners.x[c] - x_p);
+            point_centre[p] = x_p + shift;
+          }
+        for (unsigned int c = 0; c < n_corners; ++c)
+          {
+            unsigned char first = 0;
+            while (corners.position[first] != corners.position[c])
+              ++first;
+            located_corners[std::size_t(p) * n_corners + c] = {
+              corners.index[c],
+              first,
+              corners.image[c],
+              corners.xi[c],
+              alpha[c],
+              beta[c]};
+          }
+      }
+    return {};
+  }
+
+
+  template <int dim>
+  double
+  CpdiWeights<dim>::prepare()
+  {
+    auto       &particle_handler = this->context.particle_handler;
+    const auto &grid             = this->context.grid;
+    auto       &shape_functions  = this->shape_functions;
+    TimerOutput::Scope     t(this->context.timer, "shape functions");
+    constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
+    const unsigned int n_points =
+      particle_handler.n_locally_owned_particles();
+    this->points.resize(n_points);
+    point_cell_map.resize(n_points);
+    // This step's corners, n_corners per point in the order of the points
+    // (reused storage).
+    auto &corners = located_corners;
+    corners.resize(std::size_t(n_points) * n_corners);
+    const bool affine = this->affine();
+    if (affine)
+      point_centre.resize(n_points);
+    corner_hints.resize(particle_handler.get_property_pool().n_slots());
+    if (dim == 3)
+      corner_hint_xi.resize(corner_hints.size());
+
+    collect_point_cells();
 
     // Each point's corners, cell by cell on the available threads (a
     // cell's points on one thread: each tries its previous point's cells
@@ -374,413 +883,17 @@ namespace MPM
     const unsigned int n_point_cells = point_cells.size();
     const unsigned int chunk_size    = chunk_size_for(n_point_cells);
     std::vector<std::string> inverted(chunk_count(n_point_cells, chunk_size));
-    for_each_chunk(
-      n_point_cells,
-      chunk_size,
-      [&](const unsigned int chunk,
-          const unsigned int first_cell,
-          const unsigned int last_cell) {
-        for (unsigned int pc = first_cell;
-             pc < last_cell && inverted[chunk].empty();
-             ++pc)
-          {
-            const CellIterator &cell  = point_cells[pc];
-            unsigned int        p     = this->point_cell_begin[pc];
-            const unsigned int  p_end = this->point_cell_begin[pc + 1];
-            const auto         &patch = cell_patches[cell->active_cell_index()];
-            // The patch's geometry, looked up once for the cell's points
-            // when the first of them searches the patch (with the hints most
-            // points of a cell that is not a parallelogram never do), and
-            // where each corner was found for the previous point (the points
-            // of a cell are alike: tried first).
-            std::array<const std::array<Point<dim>, n_corners> *, 64>
-                                                      patch_vertices;
-            std::array<const BilinearCellMap *, 64>   patch_maps;
-            std::array<const ParallelepipedMap *, 64> patch_parallelepipeds;
-            std::array<const ExtrudedCellMap *, 64>   patch_extruded;
-            // (vertices_of() and the like read them: a corner's search
-            // looks them up first.)
-            bool patch_looked_up = false;
-            const auto look_up_patch = [&]() {
-              AssertThrow(patch.size() <= 64, ExcInternalError());
-              for (unsigned int i = 0; i < patch.size(); ++i)
-                {
-                  patch_vertices[i] = &grid.cell_vertices(patch[i]);
-                  patch_maps[i] =
-                    dim == 2 ? &grid.bilinear_map(patch[i]) : nullptr;
-                  patch_parallelepipeds[i] =
-                    dim == 3 ? &grid.parallelepiped_map(patch[i]) : nullptr;
-                  patch_extruded[i] = grid.extruded_map(patch[i]);
-                }
-              patch_looked_up = true;
-            };
-            const auto vertices_of = [&](const unsigned int i) {
-              return patch_vertices[i];
-            };
-            const auto map_of = [&](const unsigned int i) {
-              return patch_maps[i];
-            };
-            const auto parallelepiped_of = [&](const unsigned int i) {
-              return patch_parallelepipeds[i];
-            };
-            const auto extruded_of = [&](const unsigned int i) {
-              return patch_extruded[i];
-            };
-            // Periodic boundaries: each patch cell's image.
-            const unsigned char *image_of =
-              cell_patch_images.empty() ?
-                nullptr :
-                cell_patch_images[cell->active_cell_index()].data();
-            // The shift of the patch's cell @p i (its image's from the cell).
-            const auto shift_of = [&](const unsigned int i) {
-              return image_shifts[image_of[i]];
-            };
-            // @p y in the frame of the patch's cell @p i (where its image
-            // lies, the cell itself).
-            const auto in_cell_frame = [&](const unsigned int i,
-                                           const Point<dim>  &y) {
-              return image_of == nullptr ? y : y - shift_of(i);
-            };
-            // Hints where the cell is not a parallelogram (parallelepiped):
-            // in a mesh of those, the ordered search from the previous
-            // point's cells finds nearly every corner at its first test, and
-            // each test is Cramer's rule; corners on the cells' edges (where
-            // points of a regular arrangement put them) are not accepted by
-            // a hint unless it names that same cell, and the hints cost
-            // more than they save (the throughput block: 5 % slower with).
-            bool use_hints;
-            if constexpr (dim == 2)
-              use_hints = !grid.bilinear_map(cell).is_parallelogram();
-            else
-              use_hints =
-                !grid.parallelepiped_map(cell->active_cell_index()).is_affine();
-            std::array<unsigned int, n_corners> last_found;
-            last_found.fill(0);
-            // Where the patch's cells lie (an affine cell only).
-            const auto &directions =
-              cell_patch_directions[cell->active_cell_index()];
-            const bool regular_patch =
-              !directions.empty() &&
-              std::find(directions.begin(), directions.end(), mixed_direction) ==
-                directions.end();
-            auto point = this->point_cell_first_point[pc];
-            for (; p < p_end; ++point, ++p)
-              {
-                double *props       = point->get_properties().data();
-                point_properties[p] = props;
-                const unsigned int hint_index = point->get_local_index();
-                CornerHint &hint    = corner_hints[hint_index];
-                const bool  hinted  = use_hints && hint.cell == cell->active_cell_index();
-                point_cell_map[p] =
-                  dim == 2 ? &grid.bilinear_map(cell) : nullptr;
-                // A point without a domain yet (new, or read from a file) gets
-                // the one of PointDomains::initial_domain().
-                auto D = PointDomains<dim>::read(props + domain_slot);
-                if (D[0].norm_square() == 0)
-                  {
-                    D = PointDomains<dim>::initial_domain(
-                      grid.cell_vertices(cell),
-                      point->get_reference_location(),
-                      props[Layout::volume]);
-                    PointDomains<dim>::write(D, props + domain_slot);
-                    props[domain_slot + PointDomains<dim>::scale_slot] = 1;
-                  }
-                const Point<dim> x_p = point->get_location();
-                std::array<Point<dim>, n_corners> x;
-                // Where each corner lies: its cell's position in the patch.
-                std::array<unsigned char, n_corners> corner_cell;
-                // Its active_cell_index() and periodic image.
-                std::array<unsigned int, n_corners>  corner_index;
-                std::array<unsigned char, n_corners> corner_image;
-                // Where the ordered search found corner @p c: the patch's
-                // cell @p i.
-                const auto found_in = [&](const unsigned int c,
-                                          const unsigned int i) {
-                  corner_cell[c]  = i;
-                  corner_index[c] = patch[i];
-                  corner_image[c] = image_of == nullptr ? 0 : image_of[i];
-                };
-                std::array<Point<dim>, n_corners>    xi;
-                // The search of corner @p c through the cells of its direction
-                // (cell_patch_directions), in a cell whose map is affine. It
-                // decides only where the ordered search below would give the
-                // same: a corner strictly inside a cell (farther than
-                // corner_hint_margin from its faces in reference coordinates)
-                // lies in no other cell of the patch, and in a regular patch
-                // a corner that is clearly in one direction (its reference
-                // coordinates in the point's cell that far from 0 and 1) lies
-                // in no cell of another direction. Otherwise (a corner on or
-                // next to a face, which may belong to several cells: the
-                // first the ordered search tries) it is undecided.
-                const auto directed_search = [&](const unsigned int c) {
-                  constexpr double margin = corner_hint_margin;
-                  if (cell_contains<dim>(*vertices_of(0),
-                                         map_of(0),
-                                         parallelepiped_of(0),
-                                         extruded_of(0),
-                                         in_cell_frame(0, x[c]),
-                                         xi[c]))
-                    {
-                      if (!inside_unit_cell(xi[c], -margin))
-                        return Search::undecided;
-                      found_in(c, 0);
-                      last_found[c] = 0;
-                      return Search::found;
-                    }
-                  // The corner's direction from the cell (as the codes of
-                  // cell_patch_directions).
-                  unsigned int direction = 0;
-                  for (unsigned int d = 0, stride = 1; d < dim;
-                       ++d, stride *= 3)
-                    if (xi[c][d] > 1 + margin)
-                      direction += 2 * stride;
-                    else if (xi[c][d] > margin && xi[c][d] < 1 - margin)
-                      direction += stride;
-                    else if (!(xi[c][d] < -margin))
-                      return Search::undecided;
-                  for (unsigned int i = 1; i < patch.size(); ++i)
-                    if (directions[i] == direction &&
-                        cell_contains<dim>(*vertices_of(i),
-                                           map_of(i),
-                                           parallelepiped_of(i),
-                                           extruded_of(i),
-                                           in_cell_frame(i, x[c]),
-                                           xi[c]))
-                      {
-                        if (!inside_unit_cell(xi[c], -margin))
-                          return Search::undecided;
-                        found_in(c, i);
-                        last_found[c] = i;
-                        return Search::found;
-                      }
-                  return regular_patch ? Search::outside : Search::undecided;
-                };
-                // Whether every corner of the domain scaled by s about x_p
-                // lies in the patch (and where).
-                const auto locate_corners = [&](const double s) {
-                  for (unsigned int c = 0; c < n_corners; ++c)
-                    x[c] = x_p + s * D[c];
-                  // First each corner in the cell it lay in in the last
-                  // step (CornerHint; by its index, without reading the
-                  // patch), all corners side by side: in 2D their
-                  // closed-form inverse maps overlap.
-                  std::array<bool, n_corners> hit{};
-                  if (hinted)
-                    {
-                      // @p x[c] in the frame of the hinted cell of corner @p c.
-                      const auto hinted_frame = [&](const unsigned int c) {
-                        return hint.image[c] == 0 ?
-                                 x[c] :
-                                 x[c] - image_shifts[hint.image[c]];
-                      };
-                      if constexpr (dim == 2)
-                        {
-                          std::array<const BilinearCellMap *, n_corners> maps;
-                          std::array<Point<dim>, n_corners>              z;
-                          for (unsigned int c = 0; c < n_corners; ++c)
-                            {
-                              maps[c] = &grid.bilinear_map(hint.cell_index[c]);
-                              z[c]    = hinted_frame(c);
-                            }
-                          BilinearCellMap::contains(maps, z, xi, hit);
-                        }
-                      else
-                        for (unsigned int c = 0; c < n_corners; ++c)
-                          {
-                            const unsigned int k = hint.cell_index[c];
-                            if (grid.parallelepiped_map(k).is_affine())
-                              hit[c] =
-                                cell_contains<dim>(grid.cell_vertices(k),
-                                                   nullptr,
-                                                   &grid.parallelepiped_map(k),
-                                                   nullptr,
-                                                   hinted_frame(c),
-                                                   xi[c]);
-                            else
-                              {
-                                // In closed form if the cell is extruded,
-                                // else by Newton's iteration from the
-                                // corner's last reference coordinates
-                                // (TrilinearCellMap).
-                                InverseMappingResult<dim> result;
-                                if (const ExtrudedCellMap *extruded =
-                                      grid.extruded_map(k))
-                                  result = extruded->inverse(hinted_frame(c));
-                                if (!result.success)
-                                  result =
-                                    TrilinearCellMap(grid.cell_vertices(k))
-                                      .inverse(hinted_frame(c),
-                                               corner_hint_xi[hint_index][c]);
-                                hit[c] = result.success &&
-                                         inside_unit_cell(result.xi);
-                                xi[c] = result.xi;
-                              }
-                          }
-                      for (unsigned int c = 0; c < n_corners; ++c)
-                        // Accepted where the ordered search below would test
-                        // this cell first (a corner on an edge belongs to
-                        // the first cell tried that holds it), or where no
-                        // other cell can hold the corner.
-                        if (hit[c] &&
-                            (hint.patch_position[c] == last_found[c] ||
-                             inside_unit_cell(xi[c], -corner_hint_margin)))
-                          {
-                            corner_cell[c]  = hint.patch_position[c];
-                            corner_index[c] = hint.cell_index[c];
-                            corner_image[c] = hint.image[c];
-                            last_found[c]   = corner_cell[c];
-                          }
-                        else
-                          hit[c] = false;
-                    }
-                  for (unsigned int c = 0; c < n_corners; ++c)
-                    {
-                      if (hit[c])
-                        continue;
-                      if (!patch_looked_up)
-                        look_up_patch();
-                      bool found = false;
-                      const unsigned int n_patch = patch.size();
-                      const Search search =
-                        directions.empty() ? Search::undecided :
-                                             directed_search(c);
-                      if (search == Search::found)
-                        continue;
-                      for (unsigned int j = 0;
-                           search == Search::undecided && j <= n_patch;
-                           ++j)
-                        {
-                          // The previous point's cell of this corner first.
-                          const unsigned int i =
-                            j == 0 ? last_found[c] :
-                                     (j - 1 == last_found[c] ? 0 : j - 1);
-                          if (j > 0 && j - 1 == 0 && last_found[c] == 0)
-                            continue;
-                          if (cell_contains<dim>(*vertices_of(i),
-                                                 map_of(i),
-                                                 parallelepiped_of(i),
-                                                 extruded_of(i),
-                                                 in_cell_frame(i, x[c]),
-                                                 xi[c]))
-                            {
-                              found_in(c, i);
-                              last_found[c] = i;
-                              found         = true;
-                              break;
-                            }
-                        }
-                      // Outside every cell of the patch (beyond a wall, or
-                      // a domain built from the Jacobian at the point that
-                      // pokes out of a distorted boundary cell by
-                      // O(distortion * size^2)): the domain is shrunk
-                      // below. Not moved onto the nearest cell: a domain
-                      // with a corner moved has its centroid off the point,
-                      // and S+ v, the velocity of the centroid, then keeps
-                      // a component towards the wall however close the
-                      // point comes: the top corner of a sheared layer
-                      // crept through the driven top (doc/transfers.md,
-                      // "Domains at walls").
-                      if (!found)
-                        return false;
-                    }
-                  return true;
-                };
-                // The scale s of the domain about the point: 1 unless a corner
-                // left the patch (beyond the mesh or a wall, or past the
-                // neighbours). Then the whole domain is shrunk about the point,
-                // so that it stays centred on it: a point next to a wall moves
-                // with the wall's nodes, as with linear weights, instead of
-                // being pulled through it by its far corners. The scale is kept
-                // from step to step (the last slot) and tried to be doubled
-                // every 8th step, so a point resting against a wall pays for
-                // one try most steps, not a bisection.
-                double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
-                const double grown =
-                  step % 8 == 0 ? std::min(1., 2 * scale) : scale;
-                if (locate_corners(grown))
-                  scale = grown;
-                else if (!(scale < grown && locate_corners(scale)))
-                  {
-                    double inside = 0, outside = std::min(scale, grown);
-                    for (unsigned int i = 0; i < 10; ++i)
-                      {
-                        const double s = 0.5 * (inside + outside);
-                        (locate_corners(s) ? inside : outside) = s;
-                      }
-                    scale = inside;
-                    if (inside == 0 || !locate_corners(inside))
-                      {
-                        // The point sits on the patch's edge: a domain a
-                        // millionth of its size in its own cell, its corners'
-                        // reference coordinates extrapolated if they are just
-                        // outside (the limit is the linear weights).
-                        scale = 1e-6;
-                        for (unsigned int c = 0; c < n_corners; ++c)
-                          {
-                            x[c] = x_p + scale * D[c];
-                            found_in(c, 0);
-                            if constexpr (dim == 2)
-                              xi[c] = grid.bilinear_map(cell).inverse(x[c]).xi;
-                            else
-                              xi[c] = inverse_map_closed_form(
-                                        grid.cell_vertices(cell), x[c])
-                                        .xi;
-                          }
-                      }
-                  }
-                if (use_hints)
-                  {
-                    hint.cell = cell->active_cell_index();
-                    for (unsigned int c = 0; c < n_corners; ++c)
-                      {
-                        hint.patch_position[c] = corner_cell[c];
-                        hint.cell_index[c]     = corner_index[c];
-                        hint.image[c]          = corner_image[c];
-                      }
-                    if constexpr (dim == 3)
-                      corner_hint_xi[hint_index] = xi;
-                  }
-                std::array<double, n_corners>         alpha;
-                std::array<Tensor<1, dim>, n_corners> beta;
-                const Tensor<2, dim> R = PointDomains<dim>::affine_part(D);
-                if (PointDomains<dim>::is_parallelepiped(D, R))
-                  PointDomains<dim>::parallelepiped_weights(scale * R,
-                                                            alpha,
-                                                            beta);
-                else if (!PointDomains<dim>::corner_weights(x, alpha, beta))
-                  {
-                    std::ostringstream s;
-                    s << "The CPDI domain of material point " << point->get_id()
-                      << " at (" << x_p << ") is inverted (domain vectors "
-                      << R << " as a parallelogram): the material it represents has turned inside "
-                      << "out; reduce the time step.";
-                    inverted[chunk] = s.str();
-                    break;
-                  }
-                // The affine centre (see entry_centre).
-                if (affine)
-                  {
-                    Tensor<1, dim> shift;
-                    for (unsigned int c = 0; c < n_corners; ++c)
-                      shift += alpha[c] * (x[c] - x_p);
-                    point_centre[p] = x_p + shift;
-                  }
-                for (unsigned int c = 0; c < n_corners; ++c)
-                  {
-                    unsigned char first = 0;
-                    while (corner_cell[first] != corner_cell[c])
-                      ++first;
-                    corners[std::size_t(p) * n_corners + c] = {
-                      corner_index[c],
-                      first,
-                      corner_image[c],
-                      xi[c],
-                      alpha[c],
-                      beta[c]};
-                  }
-              }
-          }
-      });
+    for_each_chunk(n_point_cells,
+                   chunk_size,
+                   [&](const unsigned int chunk,
+                       const unsigned int first_cell,
+                       const unsigned int last_cell) {
+                     for (unsigned int pc = first_cell;
+                          pc < last_cell && inverted[chunk].empty();
+                          ++pc)
+                       inverted[chunk] = locate_corners_of_cell(pc);
+                   });
+
     for (const std::string &message : inverted)
       if (!message.empty())
         throw std::runtime_error(message);

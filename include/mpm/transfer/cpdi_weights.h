@@ -4,6 +4,8 @@
 #include <mpm/transfer/particle_grid_passes.h>
 #include <mpm/transfer/point_domains.h>
 
+#include <string>
+
 namespace MPM
 {
   using namespace dealii;
@@ -127,6 +129,25 @@ namespace MPM
     /// @}
 
     PointDomains<dim> point_domains;
+
+    /// The search of a cell's points' corners in its patch (defined in
+    /// cpdi_weights.cc).
+    class PatchSearch;
+
+    /// prepare(), 1: the cells holding points (point_cells) with their
+    /// first points and sizes.
+    void
+    collect_point_cells();
+
+    /**
+     * prepare(), 2: the corners of the points of point_cells[@p pc]
+     * located (PatchSearch), their domains shrunk where a corner left the
+     * patch, weighed (alpha_c, beta_c) and stored in located_corners, the
+     * hints updated. Returns the message of an inverted domain (empty if
+     * none). Safe on several threads for different cells.
+     */
+    std::string
+    locate_corners_of_cell(const unsigned int pc);
 
     /// Each entry's point (index into points), in the order of
     /// shape_functions.
