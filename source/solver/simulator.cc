@@ -64,22 +64,12 @@ namespace MPM
                                 grid.mapping,
                                 weights_slot + weights->n_point_properties());
     load_balancing.connect(grid.triangulation, particle_handler);
-    particle_handler.signals.particle_lost.connect(
-      [this](const typename Particles::ParticleIterator<dim> &particle,
-             const typename Triangulation<dim>::active_cell_iterator &) {
-        const double *props = particle->get_properties().data();
-        const double  mass  = props[PropertyLayout<dim>::mass];
-        ++n_lost_points;
-        lost_mass += mass;
-        // The energy it takes away, so that the energy check compares the
-        // remaining points with what remains available to them.
-        const auto energy = energy_of_point(props, particle->get_location());
-        lost_energy += energy[0] + energy[1] + energy[2];
-        std::ostringstream s;
-        s << "material point " << particle->get_id() << " (mass " << mass
-          << " kg) left the mesh at (" << particle->get_location() << ")";
-        lost_point_descriptions.push_back(s.str());
-      });
+    // What a removed point takes away, so that the energy check compares
+    // the remaining points with what remains available to them.
+    lost_points.connect(particle_handler,
+                        [this](const double *props, const Point<dim> &x) {
+                          return energy_of_point(props, x);
+                        });
     std::string state;
     if (checkpointing.resume())
       {
@@ -233,30 +223,13 @@ namespace MPM
   Simulator<dim>::relocate_points()
   {
     TimerOutput::Scope t(timer, "locate points");
-    const auto n_lost_before = n_lost_points;
+    const auto n_lost_before = lost_points.n_local();
     if (point_relocation.can_locate_while_moving())
       // Step 1 was done by update_points_from_grid().
       point_relocation.relocate_leavers(particle_handler);
     else
       point_relocation.relocate(particle_handler);
-    const auto n_new_lost =
-      Utilities::MPI::sum(n_lost_points - n_lost_before, mpi_communicator);
-    if (n_new_lost > 0 && error_on_lost_points)
-      {
-        std::string first =
-          lost_point_descriptions.empty() ? std::string("(on another rank)") :
-                                            lost_point_descriptions.front();
-        throw std::runtime_error(
-          "At step " + std::to_string(step) + ", t = " + std::to_string(time) +
-          " s, " + std::to_string(n_new_lost) +
-          " material point(s) left the mesh; the first: " + first +
-          ". Enlarge the mesh, constrain the boundary it crossed, or set "
-          "'Material points/Points leaving the mesh = remove' to remove such "
-          "points and report their mass.");
-      }
-    if (n_new_lost > 0)
-      pcout << "Warning: " << n_new_lost << " material point(s) left the "
-            << "mesh at t = " << time << " s and were removed.\n";
+    lost_points.check(n_lost_before, step, time, mpi_communicator, pcout);
   }
 
 
@@ -350,9 +323,8 @@ namespace MPM
                                   mpi_communicator);
     const auto s = compute_statistics();
     // Collective: every rank takes part, only rank 0 writes.
-    const auto   removed_points = Utilities::MPI::sum(n_lost_points, mpi_communicator);
-    const double removed_mass   = Utilities::MPI::sum(lost_mass, mpi_communicator);
-    statistics_file.write_row({s, removed_points, removed_mass});
+    const auto removed = lost_points.totals(mpi_communicator);
+    statistics_file.write_row({s, removed.n_points, removed.mass});
   }
 
 
@@ -468,11 +440,10 @@ namespace MPM
         if (!postprocessors.empty())
           pcout << report.str();
       }
-    const auto total_lost = Utilities::MPI::sum(n_lost_points, mpi_communicator);
-    if (total_lost > 0)
-      pcout << "Removed " << total_lost << " material point(s) that left the "
-            << "mesh, mass " << Utilities::MPI::sum(lost_mass, mpi_communicator)
-            << " kg.\n";
+    const auto removed = lost_points.totals(mpi_communicator);
+    if (removed.n_points > 0)
+      pcout << "Removed " << removed.n_points << " material point(s) that left the "
+            << "mesh, mass " << removed.mass << " kg.\n";
     const double wall = wall_seconds();
     pcout << "Done: " << step << " steps, "
           << particle_handler.n_global_particles() << " points, wall time "

@@ -37,11 +37,10 @@ namespace MPM
   Simulator<dim>::serialize_state() const
   {
     // Collective parts first: every rank computes the same state.
-    const types::particle_index removed_points =
-      Utilities::MPI::sum(n_lost_points, mpi_communicator);
-    const double removed_mass = Utilities::MPI::sum(lost_mass, mpi_communicator);
-    const double removed_energy =
-      Utilities::MPI::sum(lost_energy, mpi_communicator);
+    const auto removed = lost_points.totals(mpi_communicator);
+    const types::particle_index removed_points = removed.n_points;
+    const double                removed_mass   = removed.mass;
+    const double                removed_energy = removed.energy;
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
     // 2: the removed points' energy appended; 3: the walls' contact state;
@@ -141,9 +140,8 @@ namespace MPM
                            "name the same to resume it."));
     // The removed points are counted once, on rank 0.
     const bool is_root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    n_lost_points      = is_root ? removed_points : 0;
-    lost_mass          = is_root ? removed_mass : 0;
-    lost_energy        = is_root ? removed_energy : 0;
+    lost_points.restore({removed_points, removed_mass, removed_energy},
+                        is_root);
     for (unsigned int d = 0; d < dim; ++d)
       wrapped_mass_shift_before_restart[d] =
         is_root ? wrapped_shift_values[d] : 0;

@@ -185,7 +185,7 @@ namespace MPM
         s.gravitational_potential_energy += time_stepping.gravity * shift;
         unwrapped_centre_shift = shift;
       }
-    s.removed_energy = Utilities::MPI::sum(lost_energy, mpi_communicator);
+    s.removed_energy = lost_points.totals(mpi_communicator).energy;
     s.mean_speed =
       Utilities::MPI::sum(s.mean_speed, mpi_communicator) /
       std::max<double>(1, s.n_points);

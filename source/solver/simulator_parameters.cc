@@ -43,16 +43,7 @@ namespace MPM
     BackgroundGrid<dim>::declare_parameters(prm);
     MaterialLibrary::declare_parameters(prm, names.materials);
     PointGenerator<dim>::declare_parameters(prm, names.regions);
-    prm.enter_subsection("Material points");
-    prm.declare_entry("Points leaving the mesh",
-                      "error",
-                      Patterns::Selection("error|remove"),
-                      "What happens to a material point that leaves the "
-                      "mesh: 'error' stops the run naming the point; "
-                      "'remove' removes it, and the number of removed points "
-                      "and their mass are reported in the statistics file "
-                      "and at the end of the run.");
-    prm.leave_subsection();
+    LostPoints<dim>::declare_parameters(prm);
     PointRelocation<dim>::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
     TimeSteppingParameters<dim>::declare_parameters(prm);
@@ -87,9 +78,7 @@ namespace MPM
     grid.parse_parameters(prm, input_directory);
     materials.parse_parameters(prm);
     point_generator.parse_parameters(prm, materials, input_directory);
-    prm.enter_subsection("Material points");
-    error_on_lost_points = prm.get("Points leaving the mesh") == "error";
-    prm.leave_subsection();
+    lost_points.parse_parameters(prm);
     point_relocation.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
     time_stepping.parse_parameters(prm);

@@ -17,6 +17,7 @@
 #include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/restart/checkpointing.h>
+#include <mpm/solver/lost_points.h>
 #include <mpm/solver/rest_criterion.h>
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
@@ -325,7 +326,8 @@ namespace MPM
     unsigned int                    n_repartitions = 0;
     std::vector<std::unique_ptr<Postprocessor<dim>>> postprocessors;
     std::vector<std::string>        postprocessor_names;
-    bool                            error_on_lost_points = true;
+    /// The points that left the mesh ('Points leaving the mesh').
+    LostPoints<dim>                 lost_points;
 
     Particles::ParticleHandler<dim> particle_handler;
 
@@ -369,16 +371,8 @@ namespace MPM
     double       active_cell_size = 0;
     unsigned int output_index    = 0;
 
-    /// Points removed because they left the mesh (Points leaving the mesh
-    /// = remove), and their mass.
-    types::particle_index n_lost_points = 0;
-    double                lost_mass     = 0;
-    /// Energy the removed points carried (this rank's share; see
-    /// GlobalStatistics::removed_energy).
-    double                lost_energy   = 0;
     /// wrapped_mass_shift() of the run before it was resumed (rank 0).
     Tensor<1, dim>        wrapped_mass_shift_before_restart;
-    std::vector<std::string> lost_point_descriptions;
 
     /// Warnings about the input found in the set-up, repeated in the
     /// report.
