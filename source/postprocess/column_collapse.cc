@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
+#include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/column_collapse.h>
 #include <mpm/solver/simulator.h>
@@ -20,13 +21,21 @@ namespace MPM
     ColumnCollapse<dim>::declare_parameters(ParameterHandler &prm)
     {
       prm.declare_entry("Initial width",
-                        "0.1",
-                        Patterns::Double(0),
-                        "L0: width of the column at rest, in m.");
+                        "auto",
+                        Patterns::Anything(),
+                        "L0: width of the column at rest, in m, or 'auto': "
+                        "the material's extent at the start, measured as "
+                        "the front is (its farthest point plus half its "
+                        "spacing from 'Wall position'). A number that "
+                        "differs from that extent by more than 5 % is an "
+                        "error: the runout, the aspect ratio and Lube's law "
+                        "would be those of another column.");
       prm.declare_entry("Initial height",
-                        "0.2",
-                        Patterns::Double(0),
-                        "H0: height of the column at rest, in m.");
+                        "auto",
+                        Patterns::Anything(),
+                        "H0: height of the column at rest, in m, or 'auto' "
+                        "(measured as 'Initial width' is, above 'Base "
+                        "elevation'; the same check).");
       prm.declare_entry("Base elevation",
                         "0",
                         Patterns::Double(),
@@ -72,8 +81,27 @@ namespace MPM
     void
     ColumnCollapse<dim>::parse_parameters(ParameterHandler &prm)
     {
-      width          = prm.get_double("Initial width");
-      initial_height = prm.get_double("Initial height");
+      // A length in m, or 'auto' (0 here: measured in initialize()).
+      const auto length = [&prm](const std::string &name) {
+        const std::string value = Utilities::trim(prm.get(name));
+        if (value == "auto")
+          return 0.;
+        double length = 0;
+        try
+          {
+            length = Utilities::string_to_double(value);
+          }
+        catch (...)
+          {
+            length = -1;
+          }
+        if (!(length > 0))
+          throw InputError("Postprocess/column collapse/" + name + " = '" +
+                           value + "': must be 'auto' or a length > 0 (m).");
+        return length;
+      };
+      given_width    = length("Initial width");
+      given_height   = length("Initial height");
       base           = prm.get_double("Base elevation");
       wall           = prm.get_double("Wall position");
       stop_speed     = prm.get_double("Stop speed");
@@ -120,6 +148,27 @@ namespace MPM
     void
     ColumnCollapse<dim>::initialize(const Simulator<dim> &simulator)
     {
+      // The column's extent at the start, measured as the front and the
+      // height are (the first line of the table).
+      const auto m = measure(simulator);
+      // L0 and H0: given ones must be the column's.
+      const auto take = [](const double given,
+                           const double measured,
+                           const std::string &name) {
+        if (given > 0 && std::abs(given - measured) > 0.05 * given)
+          throw InputError(
+            "Postprocess/column collapse/" + name + " = " +
+            std::to_string(given) + " m, but the material's " +
+            (name == "Initial width" ? "width" : "height") +
+            " at the start is " + std::to_string(measured) +
+            " m (its farthest point plus half its spacing from the wall or "
+            "base): set the column's " +
+            (name == "Initial width" ? "width" : "height") +
+            ", or 'auto' to measure it.");
+        return given > 0 ? given : measured;
+      };
+      width          = take(given_width, m[0], "Initial width");
+      initial_height = take(given_height, m[1], "Initial height");
       execute(simulator, true);
       double volume = 0;
       for (const auto &point : simulator.get_particle_handler())

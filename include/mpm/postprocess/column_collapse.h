@@ -63,7 +63,7 @@ namespace MPM
       serialize(Archive &ar, const unsigned int)
       {
         ar &table &last_time_above_stop &front &height &mean_speed
-          &initial_volume;
+          &initial_volume &width &initial_height;
       }
 
     private:
@@ -73,8 +73,12 @@ namespace MPM
       std::array<double, 3>
       measure(const Simulator<dim> &simulator) const;
 
-      double width = 0.1, initial_height = 0.2, base = 0, wall = 0,
-             stop_speed = 0.01, bin_width = 0.005, front_thickness = 0.01;
+      /// L0 and H0 (initialize(): given, or measured at the start).
+      double width = 0, initial_height = 0;
+      /// 'Initial width' and 'Initial height' (0: 'auto').
+      double given_width = 0, given_height = 0;
+      double base = 0, wall = 0, stop_speed = 0.01, bin_width = 0.005,
+             front_thickness = 0.01;
       /// 'Runout volume fractions'.
       std::vector<double> volume_fractions{0.95, 0.99};
 
