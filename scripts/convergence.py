@@ -75,6 +75,11 @@ def parse_arguments(argv):
     parser.add_argument("--mpm", default=os.path.join(ROOT, "build", "release", "mpm"),
                         help="the mpm executable (default build/release/mpm)")
     parser.add_argument("--no-plot", action="store_true", help="skip the PNG")
+    parser.add_argument("--time-step-check", action="store_true",
+                        help="run the finest level again at half the time step (half the CFL "
+                             "number, or half a fixed 'Time step') and give each quantity's "
+                             "value there and its change: the levels halve the time step with "
+                             "the cells, and a result may depend on the step as much")
     args = parser.parse_args(argv)
     if args.levels < 2:
         parser.error("--levels must be at least 2")
@@ -93,15 +98,16 @@ def mpm_command(args, extra):
     return command
 
 
-def base_refinements(args):
-    """The scene's own 'Mesh/Global refinements', from --print-parameters."""
+def scene_parameters(args):
+    """The scene's parameters as it runs them, from --print-parameters:
+    {'Section/Name': value}."""
     command = [args.mpm, "--print-parameters"] + args.prm
     for entry in args.set:
         command += ["--set", entry]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"convergence.py: '{' '.join(command)}' failed:\n{result.stderr}")
-    path = []
+    path, values = [], {}
     for line in result.stdout.splitlines():
         words = line.split()
         if not words:
@@ -110,15 +116,33 @@ def base_refinements(args):
             path.append(" ".join(words[1:]))
         elif words[0] == "end":
             path.pop()
-        elif words[0] == "set" and path == ["Mesh"]:
+        elif words[0] == "set":
             name, _, value = line.partition("=")
-            if name.split(None, 1)[1].strip() == "Global refinements":
-                return int(value.split("#")[0])
-    sys.exit("convergence.py: no 'Mesh/Global refinements' in the parameters")
+            values["/".join(path + [name.split(None, 1)[1].strip()])] = value.split("#")[0].strip()
+    return values
 
 
-def run_level(args, out, refinements):
-    directory = os.path.join(out, f"level-{refinements}")
+def base_refinements(parameters):
+    """The scene's own 'Mesh/Global refinements'."""
+    if "Mesh/Global refinements" not in parameters:
+        sys.exit("convergence.py: no 'Mesh/Global refinements' in the parameters")
+    return int(parameters["Mesh/Global refinements"])
+
+
+def half_time_step(parameters):
+    """The setting that halves the scene's time step: the CFL number, or the
+    fixed 'Time step'."""
+    if parameters.get("Time stepping/Time step selection", "cfl") == "cfl":
+        name = "Time stepping/CFL number"
+    else:
+        name = "Time stepping/Time step"
+    if name not in parameters:
+        sys.exit(f"convergence.py: no '{name}' in the parameters (--time-step-check)")
+    return f"{name}={float(parameters[name]) / 2!r}"
+
+
+def run_level(args, out, refinements, extra=(), suffix=""):
+    directory = os.path.join(out, f"level-{refinements}{suffix}")
     log = directory + ".log"
     report = os.path.join(directory, "report.txt")
     if args.reuse and os.path.exists(report) and os.path.exists(log) and \
@@ -127,7 +151,7 @@ def run_level(args, out, refinements):
         return directory
     command = mpm_command(args, ["--set", f"Mesh/Global refinements={refinements}",
                                  "--set", f"Output/Directory={directory}",
-                                 "--set", "Output/Write particles=false"])
+                                 "--set", "Output/Write particles=false"] + list(extra))
     print(f"  level {refinements}: {' '.join(command)}", flush=True)
     with open(log, "w") as stream:
         result = subprocess.run(command, stdout=stream, stderr=subprocess.STDOUT)
@@ -257,11 +281,22 @@ def main(argv):
     case = os.path.splitext(os.path.basename(args.prm[-1]))[0]
     out = args.out or f"output-convergence-{case}"
     os.makedirs(out, exist_ok=True)
-    first = base_refinements(args)
+    parameters = scene_parameters(args)
+    first = base_refinements(parameters)
     levels = list(range(first, first + args.levels))
     print(f"Mesh convergence of {' '.join(args.prm)}: 'Global refinements' {levels[0]}..{levels[-1]} "
           f"(cell size h / 2^k, k = 0..{args.levels - 1}), study in {out}", flush=True)
     directories = [run_level(args, out, k) for k in levels]
+    # The finest mesh again with half the time step: the levels halve the
+    # time step with the cells, and a quantity may depend on the step as
+    # much as on the mesh (doc/convergence_command.md, "The time step").
+    half_dt = None
+    if args.time_step_check:
+        setting = half_time_step(parameters)
+        directory = run_level(args, out, levels[-1], ["--set", setting], "-half-time-step")
+        half_dt = report_quantities(os.path.join(directory, "report.txt"))
+        half_dt.update(statistics_quantities(directory))
+        half_dt_cost = cost(directory + ".log")
 
     per_level = []
     costs = []
@@ -270,7 +305,8 @@ def main(argv):
         q.update(statistics_quantities(directory))
         per_level.append(q)
         costs.append(cost(directory + ".log"))
-    names = [n for n in per_level[-1] if all(n in q for q in per_level)]
+    names = [n for n in per_level[-1] if all(n in q for q in per_level)
+             and (half_dt is None or n in half_dt)]
     if args.only:
         names = [n for n in names if re.search(args.only, n)]
     if not names:
@@ -279,7 +315,13 @@ def main(argv):
     rows = []
     for name in names:
         values = [q[name] for q in per_level]
-        rows.append((name, values, classify(values)))
+        r = classify(values)
+        if half_dt is not None:
+            # The finest level's value at half the time step, and the change.
+            r["half_dt"] = half_dt[name]
+            r["change_half_dt"] = abs(half_dt[name] - values[-1]) / abs(values[-1]) \
+                if values[-1] != 0 else (0.0 if half_dt[name] == 0 else None)
+        rows.append((name, values, r))
 
     lines = []
     lines.append(f"# Mesh convergence: {' '.join(args.prm)}"
@@ -292,6 +334,12 @@ def main(argv):
                          f"{c['steps_wall']:.4g} s of steps")
     header = [f"h/{2 ** (k - first)}" for k in levels] + \
         ["status", "order p", "extrapolated", "GCI fine", "change fine"]
+    if half_dt is not None:
+        lines.append(f"# finest level again at half the time step ({half_time_step(parameters)}): "
+                     "its value and the change from the finest level"
+                     + (f"; {half_dt_cost['steps']} steps, {half_dt_cost['steps_wall']:.4g} s of steps"
+                        if half_dt_cost else ""))
+        header += ["finest, dt/2", "change dt/2"]
     width = max(len(n) for n in names)
     lines.append(f"{'quantity':<{width}}  " + "  ".join(f"{h:>12}" for h in header))
     for name, values, r in rows:
@@ -299,6 +347,9 @@ def main(argv):
             r["status"], fmt(r["order"], "{:.3g}"), fmt(r["extrapolated"]),
             fmt(None if r["gci"] is None else 100 * r["gci"], "{:.3g} %"),
             fmt(None if r["change"] is None else 100 * r["change"], "{:.3g} %")]
+        if half_dt is not None:
+            cells += [fmt(r["half_dt"]),
+                      fmt(None if r["change_half_dt"] is None else 100 * r["change_half_dt"], "{:.3g} %")]
         lines.append(f"{name:<{width}}  " + "  ".join(f"{c:>12}" for c in cells))
     table = "\n".join(lines)
     print(table)
@@ -307,12 +358,14 @@ def main(argv):
 
     with open(os.path.join(out, "convergence.csv"), "w", newline="") as stream:
         writer = csv.writer(stream)
+        extra = ["finest_half_time_step", "change_half_time_step"] if half_dt is not None else []
         writer.writerow(["quantity"] + [f"level_{k}" for k in levels] +
-                        ["status", "order", "extrapolated", "gci_fine", "change_fine", "spread"])
+                        ["status", "order", "extrapolated", "gci_fine", "change_fine", "spread"] + extra)
+        keys = ("order", "extrapolated", "gci", "change", "spread") + \
+            (("half_dt", "change_half_dt") if half_dt is not None else ())
         for name, values, r in rows:
             writer.writerow([name] + [repr(v) for v in values] +
-                            [r["status"]] + [("" if r[k] is None else repr(r[k]))
-                                             for k in ("order", "extrapolated", "gci", "change", "spread")])
+                            [r["status"]] + [("" if r[k] is None else repr(r[k])) for k in keys])
         writer.writerow(["cost: points"] + [c.get("points", "") for c in costs])
         writer.writerow(["cost: steps"] + [c.get("steps", "") for c in costs])
         writer.writerow(["cost: wall time of the steps (s)"] + [c.get("steps_wall", "") for c in costs])

@@ -4,22 +4,27 @@ scripts/convergence.py: with 'Mesh/Global refinements = k' (cell size
 h = 2^-k) it reports quantities whose error is exactly C h^p, an
 oscillating one, one that does not change and one whose differences grow,
 a statistics file and the 'Done:' line. '--print-parameters' gives the
-scene's own refinement level, 1."""
+scene's own refinement level, 1, and its CFL number, 0.5; the second-order
+quantity also has a time-step error 4 (CFL - 0.5) h, zero at the scene's
+own CFL number."""
 import os
 import sys
 
 args = sys.argv[1:]
 if "--print-parameters" in args:
-    print("subsection Mesh\n  set Global refinements = 1\nend")
+    print("subsection Mesh\n  set Global refinements = 1\nend\n"
+          "subsection Time stepping\n  set Time step selection = cfl\n"
+          "  set CFL number = 0.5\nend")
     sys.exit(0)
 settings = dict(a.split("=", 1) for a in args if "=" in a and "/" in a.split("=")[0])
 k = int(settings["Mesh/Global refinements"])
 out = settings["Output/Directory"]
 os.makedirs(out, exist_ok=True)
 h = 2.0 ** -k
+cfl = float(settings.get("Time stepping/CFL number", 0.5))
 with open(os.path.join(out, "report.txt"), "w") as report:
     report.write("# fake report\n## known orders: h = 2^-k\n")
-    report.write(f"second order, 3 + 2 h^2: {3 + 2 * h * h!r}\n")
+    report.write(f"second order, 3 + 2 h^2: {3 + 2 * h * h + 4 * (cfl - 0.5) * h!r}\n")
     report.write(f"first order (m), 1 - 0.5 h: {1 - 0.5 * h!r} m  exact: 1\n")
     report.write(f"oscillating: {1 + (-1) ** k * h!r}\n")
     report.write(f"unchanged: 7\n")
