@@ -3,7 +3,6 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <mpm/grid/point_location.h>
-#include <mpm/grid/q1_shape_functions.h>
 #include <mpm/grid/trilinear_cell_map.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/material_points/point_relocation.h>
@@ -318,8 +317,9 @@ namespace MPM
           {
             // Neither next to its old cell, nor just beyond a wall of it,
             // nor anywhere in the mesh (every rank's triangulation covers
-            // the whole domain): the point left the domain. Reported below, unless deal.II's sort takes over
-            // (it reports them itself).
+            // the whole domain): the point left the domain. Reported
+            // below, unless deal.II's sort takes over (it reports them
+            // itself).
             lost.push_back(point);
             continue;
           }
@@ -503,12 +503,8 @@ namespace MPM
         }
     if (overshoot == 0 || overshoot > overshoot_tolerance)
       return false;
-    // The cell's (multi)linear map forward: MappingQ1's.
-    const auto &vertices = grid->cell_vertices(old_cell->active_cell_index());
-    const auto  N        = Q1ShapeFunctions<dim>::values_at(xi);
-    Point<dim>  y;
-    for (unsigned int v = 0; v < vertices.size(); ++v)
-      y += N[v] * vertices[v];
+    const Point<dim> y = map_unit_to_real<dim>(
+      grid->cell_vertices(old_cell->active_cell_index()), xi);
     if (inside_unit_cell(xi))
       {
         location.cell  = old_cell;

@@ -148,9 +148,9 @@ namespace MPM
     void
     ColumnCollapse<dim>::initialize(const Simulator<dim> &simulator)
     {
-      // The column's extent at the start, measured as the front and the
-      // height are (the first line of the table).
-      const auto m = measure(simulator);
+      // The first line of the table: the column's extent at the start,
+      // measured as the front and the height are later.
+      execute(simulator, true);
       // L0 and H0: given ones must be the column's.
       const auto take = [](const double given,
                            const double measured,
@@ -167,9 +167,8 @@ namespace MPM
             ", or 'auto' to measure it.");
         return given > 0 ? given : measured;
       };
-      width          = take(given_width, m[0], "Initial width");
-      initial_height = take(given_height, m[1], "Initial height");
-      execute(simulator, true);
+      width          = take(given_width, front, "Initial width");
+      initial_height = take(given_height, height, "Initial height");
       double volume = 0;
       for (const auto &point : simulator.get_particle_handler())
         volume += point.get_properties()[PropertyLayout<dim>::volume];

@@ -38,9 +38,6 @@ namespace MPM
   {
     // Collective parts first: every rank computes the same state.
     const auto removed = lost_points.totals(mpi_communicator);
-    const types::particle_index removed_points = removed.n_points;
-    const double                removed_mass   = removed.mass;
-    const double                removed_energy = removed.energy;
     const std::uint64_t n_points    = particle_handler.n_global_particles();
     const std::uint64_t n_cells     = grid.triangulation.n_global_active_cells();
     // 2: the removed points' energy appended; 3: the walls' contact state;
@@ -74,9 +71,9 @@ namespace MPM
     {
       boost::archive::binary_oarchive ar(state);
       ar << format << space_dim << n_points << n_cells << time << step
-         << time_step << output_index << max_point_speed << removed_points
-         << removed_mass << n_repartitions << stats_bytes << output_writer
-         << postprocessor_names << postprocessor_states << removed_energy
+         << time_step << output_index << max_point_speed << removed.n_points
+         << removed.mass << n_repartitions << stats_bytes << output_writer
+         << postprocessor_names << postprocessor_states << removed.energy
          << contact[0] << contact[1] << max_state_wave_speed
          << wrapped_shift_values << rest_criterion << stability_monitor;
     }
