@@ -194,6 +194,22 @@ namespace MPM
         "velocities, stresses in the output) are rotated; frame-independent "
         "ones (speeds, distances, energies) must not change.");
       prm.declare_entry(
+        "Local origin",
+        "auto",
+        Patterns::Anything(),
+        "The point o of the parameter file's frame that becomes the mesh's "
+        "zero: the mesh is built at x - o, while the parameter file "
+        "(regions, functions), the elevation model, release areas, hazard "
+        "rasters, the point file and the statistics' centre of mass speak "
+        "of x (map coordinates). The particle and mesh VTU files hold x - o "
+        "(single precision cannot hold map coordinates to a cell; ParaView's "
+        "Transform filter adds o back, the report states it). 'auto': the "
+        "lowest corner of the coarse mesh, horizontal coordinates only, "
+        "truncated towards zero to whole kilometres (zero for any mesh "
+        "within 1 km of the origin, UTM coordinates keep their last three "
+        "digits); or dim coordinates (m). Not together with a scene "
+        "rotation.");
+      prm.declare_entry(
         "Scene rotation axis",
         "0, 0, 1",
         Patterns::List(Patterns::Double(), 3, 3),
@@ -231,6 +247,26 @@ namespace MPM
                     "Mesh/Scene rotation axis: in 2D the scene turns about "
                     "z; leave the axis at 0, 0, 1.");
       }
+      local_origin_setting = Utilities::trim(prm.get("Local origin"));
+      if (local_origin_setting != "auto")
+        {
+          std::vector<double> values;
+          try
+            {
+              values = Utilities::string_to_double(
+                Utilities::split_string_list(local_origin_setting));
+            }
+          catch (const std::exception &)
+            {
+              values.clear();
+            }
+          check_input(values.size() == dim,
+                      "Mesh/Local origin = '" + local_origin_setting +
+                        "': give 'auto' or " + std::to_string(dim) +
+                        " coordinates separated by commas.");
+          for (unsigned int d = 0; d < dim; ++d)
+            local_origin[d] = values[d];
+        }
       vertex_perturbation = prm.get_double("Random vertex perturbation");
       periodic_boundaries.parse_parameters(prm);
     }
@@ -307,7 +343,32 @@ namespace MPM
 
     check_cell_geometry();
 
+    if (local_origin_setting == "auto")
+      {
+        local_origin = Tensor<1, dim>();
+        const auto box = GridTools::compute_bounding_box(triangulation);
+        for (unsigned int d = 0; d + 1 < dim; ++d)
+          local_origin[d] =
+            std::trunc(Utilities::MPI::min(box.get_boundary_points().first[d],
+                                           mpi_communicator) /
+                       1000.) *
+            1000.;
+      }
+    has_local_origin = local_origin.norm() > 0;
+    check_input(!has_local_origin || rotation_angle == 0,
+                "Mesh/Local origin: the scene is both shifted (origin " +
+                  Utilities::to_string(local_origin[0]) +
+                  ", ...) and rotated (Mesh/Scene rotation angle); use one of "
+                  "them (set 'Local origin = " +
+                  std::string(dim == 2 ? "0, 0" : "0, 0, 0") +
+                  "' to keep map coordinates).");
+
     rotation = unit_symmetric_tensor<dim>();
+    if (has_local_origin)
+      GridTools::transform([this](const Point<dim> &x) {
+        return to_mesh_frame(x);
+      },
+                           triangulation);
     if (rotation_angle != 0)
       {
         if constexpr (dim == 3)

@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -105,18 +106,82 @@ namespace MPM
                                ", column " + std::to_string(i + 1) +
                                ") is not a number.");
             }
-          check_input(!has_nodata || value != nodata,
-                      "Elevation model '" + file + "': row " +
-                        std::to_string(row + 1) + ", column " +
-                        std::to_string(i + 1) +
-                        " holds the NODATA value; the mesh needs the ground "
-                        "everywhere in the grid (crop or fill the DEM).");
+          if (has_nodata && value == nodata)
+            value = std::numeric_limits<double>::quiet_NaN();
           // Rows run from the north: row 0 is j = n_y - 1.
           z[std::size_t(n_y - 1 - row) * n_x + i] = value;
         }
     check_input(!(in >> word),
                 "Elevation model '" + file + "': more values than ncols x "
                 "nrows = " + std::to_string(std::size_t(n_x) * n_y) + ".");
+    file_name            = file;
+    first_column         = 0;
+    first_row_from_south = 0;
+    file_rows            = n_y;
+  }
+
+
+  void
+  ElevationModel::crop(const double       x_min,
+                       const double       y_min,
+                       const double       x_max,
+                       const double       y_max,
+                       const std::string &parameter)
+  {
+    // Nodes on the rectangle's edge count as inside it, up to round-off
+    // in the header's coordinates.
+    const double tolerance = 1e-6 * spacing;
+    const auto   first     = [&](const double lower, const double origin) {
+      return static_cast<long>(std::ceil((lower - origin - tolerance) / spacing));
+    };
+    const auto last = [&](const double upper, const double origin) {
+      return static_cast<long>(std::floor((upper - origin + tolerance) / spacing));
+    };
+    const long i_begin = std::max(0L, first(x_min, x0));
+    const long i_end   = std::min<long>(n_x - 1, last(x_max, x0));
+    const long j_begin = std::max(0L, first(y_min, y0));
+    const long j_end   = std::min<long>(n_y - 1, last(y_max, y0));
+    check_input(i_end - i_begin >= 1 && j_end - j_begin >= 1,
+                parameter + ": the rectangle holds fewer than 2 x 2 nodes of "
+                "the elevation model '" + file_name + "' (nodes at x = " +
+                  Utilities::to_string(x0) + " ... " +
+                  Utilities::to_string(node_x(n_x - 1)) + ", y = " +
+                  Utilities::to_string(y0) + " ... " +
+                  Utilities::to_string(node_y(n_y - 1)) + ", spacing " +
+                  Utilities::to_string(spacing) + ").");
+    const unsigned int  new_n_x = i_end - i_begin + 1;
+    const unsigned int  new_n_y = j_end - j_begin + 1;
+    std::vector<double> cropped(std::size_t(new_n_x) * new_n_y);
+    for (unsigned int j = 0; j < new_n_y; ++j)
+      for (unsigned int i = 0; i < new_n_x; ++i)
+        cropped[std::size_t(j) * new_n_x + i] =
+          z[std::size_t(j + j_begin) * n_x + i + i_begin];
+    x0 = node_x(i_begin);
+    y0 = node_y(j_begin);
+    first_column += i_begin;
+    first_row_from_south += j_begin;
+    n_x = new_n_x;
+    n_y = new_n_y;
+    z.swap(cropped);
+  }
+
+
+  void
+  ElevationModel::check_complete() const
+  {
+    // Row by row as the file holds them, from the north.
+    for (unsigned int jj = n_y; jj-- > 0;)
+      for (unsigned int i = 0; i < n_x; ++i)
+        if (std::isnan(z[std::size_t(jj) * n_x + i]))
+          throw InputError(
+            "Elevation model '" + file_name + "': row " +
+            std::to_string(file_rows - first_row_from_south - jj) +
+            ", column " + std::to_string(first_column + i + 1) + " (x = " +
+            Utilities::to_string(node_x(i)) + ", y = " +
+            Utilities::to_string(node_y(jj)) +
+            ") holds the NODATA value; the mesh needs the ground "
+            "everywhere in the grid (fill the DEM, or crop it with "
+            "'Mesh/Terrain/Area of interest').");
   }
 
 
@@ -146,6 +211,14 @@ namespace MPM
                       "ESRI ASCII grid (.asc) of the ground elevation (m); "
                       "a relative name is read relative to the .prm file. "
                       "Mesh/Source = terrain builds the mesh on it (3D).");
+    prm.declare_entry("Area of interest",
+                      "",
+                      Patterns::Anything(),
+                      "Mesh only the part of the elevation model within "
+                      "the rectangle 'x_min, y_min : x_max, y_max' (map "
+                      "coordinates, m; nodes on its edge kept); empty: the "
+                      "whole grid. NODATA outside it is allowed, inside it "
+                      "an input error.");
     prm.declare_entry("Node stride",
                       "1",
                       Patterns::Integer(1),
@@ -176,7 +249,34 @@ namespace MPM
     stride   = prm.get_integer("Node stride");
     height   = prm.get_double("Height above ground");
     layers   = prm.get_integer("Layers");
+    const std::string area = Utilities::trim(prm.get("Area of interest"));
     prm.leave_subsection();
+    area_of_interest.clear();
+    if (!area.empty())
+      {
+        const auto corners = Utilities::split_string_list(area, ':');
+        bool       valid   = corners.size() == 2;
+        for (const auto &corner : corners)
+          {
+            try
+              {
+                const auto xy = Utilities::string_to_double(
+                  Utilities::split_string_list(corner));
+                valid = valid && xy.size() == 2;
+                area_of_interest.insert(area_of_interest.end(), xy.begin(), xy.end());
+              }
+            catch (const std::exception &)
+              {
+                valid = false;
+              }
+          }
+        check_input(valid && area_of_interest.size() == 4 &&
+                      area_of_interest[0] < area_of_interest[2] &&
+                      area_of_interest[1] < area_of_interest[3],
+                    "Mesh/Terrain/Area of interest = '" + area +
+                      "': give 'x_min, y_min : x_max, y_max' with x_min < "
+                      "x_max and y_min < y_max.");
+      }
     check_input(height > 0,
                 "Mesh/Terrain/Height above ground must be positive.");
   }
@@ -189,6 +289,13 @@ namespace MPM
                 "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
                 "is empty.");
     dem.read_esri_ascii(dem_file);
+    if (!area_of_interest.empty())
+      dem.crop(area_of_interest[0],
+               area_of_interest[1],
+               area_of_interest[2],
+               area_of_interest[3],
+               "Mesh/Terrain/Area of interest");
+    dem.check_complete();
     const ElevationModel &model = dem;
     check_input((model.n_x - 1) % stride == 0 && (model.n_y - 1) % stride == 0,
                 "Mesh/Terrain/Node stride = " + std::to_string(stride) +

@@ -122,8 +122,8 @@ namespace MPM
       for (const auto &point : simulator.get_particle_handler())
       {
         const Point<dim> x = grid.to_scene_frame(point.get_location());
-        const Point<dim> v = grid.to_scene_frame(Point<dim>(
-          read_vector<dim>(&point.get_properties()[Layout::velocity])));
+        const Tensor<1, dim> v = grid.to_scene_frame(
+          read_vector<dim>(&point.get_properties()[Layout::velocity]));
         const double     s = bed_coordinates(x[0], x[1]).first;
         extremes[0]        = std::min(extremes[0], -s);
         extremes[1]        = std::min(extremes[1], s);

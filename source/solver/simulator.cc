@@ -324,7 +324,8 @@ namespace MPM
     const auto s = compute_statistics();
     // Collective: every rank takes part, only rank 0 writes.
     const auto removed = lost_points.totals(mpi_communicator);
-    statistics_file.write_row({s, removed.n_points, removed.mass});
+    statistics_file.write_row(
+      {s, removed.n_points, removed.mass, grid.get_local_origin()});
   }
 
 

@@ -60,6 +60,9 @@ namespace MPM
        "m",
        dim,
        vector([](const Row &r) {
+         // Zero origin: the sum is left out, which would turn -0 into 0.
+         if (r.local_origin.norm() > 0)
+           return Tensor<1, dim>(r.statistics.centre_of_mass) + r.local_origin;
          return Tensor<1, dim>(r.statistics.centre_of_mass);
        })},
       {"removed points",

@@ -191,9 +191,12 @@ namespace MPM
       return rotation * v;
     }
 
+    /// A position: R (x - o), o the local origin.
     Point<dim>
     to_mesh_frame(const Point<dim> &x) const
     {
+      if (has_local_origin)
+        return Point<dim>(rotation * (x - local_origin));
       return Point<dim>(rotation * x);
     }
 
@@ -208,10 +211,20 @@ namespace MPM
     SymmetricTensor<2, 3>
     to_mesh_frame(const SymmetricTensor<2, 3> &t) const;
 
-    /// From the mesh's frame back to the parameter file's: R^T x.
+    /// A vector from the mesh's frame back to the parameter file's: R^T v.
+    Tensor<1, dim>
+    to_scene_frame(const Tensor<1, dim> &v) const
+    {
+      return transpose(rotation) * v;
+    }
+
+    /// A position from the mesh's frame back to the parameter file's:
+    /// R^T x + o.
     Point<dim>
     to_scene_frame(const Point<dim> &x) const
     {
+      if (has_local_origin)
+        return Point<dim>(transpose(rotation) * x) + local_origin;
       return Point<dim>(transpose(rotation) * x);
     }
 
@@ -223,6 +236,20 @@ namespace MPM
     is_rotated() const
     {
       return rotation_angle != 0;
+    }
+
+    /**
+     * The local origin o ('Mesh/Local origin'): the mesh lives at x - o
+     * while the parameter file, the elevation model and the outputs in
+     * map coordinates speak of x. Zero unless the scene lies far from
+     * the coordinates' zero (a DEM in UTM coordinates), where positions
+     * of 10^6 m would leave the inverse mapping and single-precision
+     * output (VTU) too few digits for a cell.
+     */
+    const Tensor<1, dim> &
+    get_local_origin() const
+    {
+      return local_origin;
     }
     /** @} */
 
@@ -236,8 +263,20 @@ namespace MPM
     height_above_ground(const Point<dim> &x) const
     {
       if (source == "terrain")
-        return x[dim - 1] - terrain.dem.elevation(x[0], dim == 3 ? x[1] : 0.);
+        {
+          const Point<dim> map_x = has_local_origin ? x + local_origin : x;
+          return map_x[dim - 1] -
+                 terrain.dem.elevation(map_x[0], dim == 3 ? map_x[1] : 0.);
+        }
       return x[dim - 1];
+    }
+
+    /// The ground of a terrain mesh (map coordinates), nullptr for any
+    /// other source.
+    const ElevationModel *
+    elevation_model() const
+    {
+      return source == "terrain" ? &terrain.dem : nullptr;
     }
 
     parallel::distributed::Triangulation<dim> triangulation;
@@ -284,6 +323,11 @@ namespace MPM
     /// Axis of the scene rotation (3D; +z or -z in 2D).
     Tensor<1, 3>   rotation_axis;
     Tensor<2, dim> rotation       = unit_symmetric_tensor<dim>();
+    /// 'Mesh/Local origin' as given ('auto' or coordinates), and the
+    /// origin create() chose from it.
+    std::string    local_origin_setting = "auto";
+    Tensor<1, dim> local_origin;
+    bool           has_local_origin = false;
     double       min_cell_size        = 0;
     std::vector<double> cell_sizes;
     std::vector<std::array<Point<dim>, GeometryInfo<dim>::vertices_per_cell>>

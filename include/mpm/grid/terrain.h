@@ -29,11 +29,44 @@ namespace MPM
   public:
     /**
      * Read @p file; an InputError names the file, the line and what is
-     * wrong (missing header entry, too few values, a NODATA value inside
-     * the grid, a non-number).
+     * wrong (missing header entry, too few values, a non-number). NODATA
+     * values are kept as NaN: crop() may cut them away,
+     * check_complete() says where one is left.
      */
     void
     read_esri_ascii(const std::string &file);
+
+    /**
+     * Keep the nodes within [x_min, x_max] x [y_min, y_max] (map
+     * coordinates, a node on the rectangle's edge kept). An InputError
+     * names @p parameter if fewer than 2 x 2 nodes are left.
+     */
+    void
+    crop(const double       x_min,
+         const double       y_min,
+         const double       x_max,
+         const double       y_max,
+         const std::string &parameter);
+
+    /**
+     * An InputError naming the file, the row and column (in the file) and
+     * the map position of the first NODATA node left in the grid: the
+     * mesh needs the ground everywhere.
+     */
+    void
+    check_complete() const;
+
+    /// The x, y of the node (i, j).
+    double
+    node_x(const unsigned int i) const
+    {
+      return x0 + i * spacing;
+    }
+    double
+    node_y(const unsigned int j) const
+    {
+      return y0 + j * spacing;
+    }
 
     /// Ground elevation at (x, y), bilinear between the grid's nodes;
     /// clamped to the grid outside it.
@@ -46,6 +79,10 @@ namespace MPM
     /// Elevations, row-major from the south: z[j * n_x + i] at
     /// (x0 + i spacing, y0 + j spacing).
     std::vector<double> z;
+    /// The file read, and the file's column and row (from the south, 0
+    /// based) of node (0, 0) and its number of rows: for messages.
+    std::string  file_name;
+    unsigned int first_column = 0, first_row_from_south = 0, file_rows = 0;
   };
 
 
@@ -73,6 +110,8 @@ namespace MPM
     std::string    dem_file;
     unsigned int   stride = 1, layers = 4;
     double         height = 1;
+    /// 'Area of interest' (map coordinates); empty for the whole grid.
+    std::vector<double> area_of_interest;
     /// The ground, once create() has read it.
     ElevationModel dem;
   };

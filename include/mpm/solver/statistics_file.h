@@ -28,6 +28,10 @@ namespace MPM
       const GlobalStatistics<dim> &statistics;
       types::particle_index        removed_points;
       double                       removed_mass;
+      /// Added to the centre of mass: the mesh's local origin
+      /// (BackgroundGrid::get_local_origin()), so that the file speaks
+      /// map coordinates.
+      Tensor<1, dim> local_origin;
     };
 
     /**
