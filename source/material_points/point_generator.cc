@@ -15,34 +15,11 @@
 #include <mpm/material_points/property_layout.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace MPM
 {
-  namespace
-  {
-    /**
-     * Even-odd rule; points on an edge count as inside for the lower/left
-     * edges only, which is enough because generated points never lie on a
-     * region edge that coincides with a mesh line.
-     */
-    bool
-    inside_polygon(const std::vector<Point<2>> &polygon, const Point<2> &p)
-    {
-      bool inside = false;
-      for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size();
-           j = i++)
-        {
-          const Point<2> &a = polygon[i], &b = polygon[j];
-          if ((a[1] > p[1]) != (b[1] > p[1]) &&
-              p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
-            inside = !inside;
-        }
-      return inside;
-    }
-  } // namespace
-
-
   template <int dim>
   bool
   PointGenerator<dim>::Region::contains(const Point<dim> &p,
@@ -61,7 +38,7 @@ namespace MPM
         return true;
       }
     if (type == "polygon")
-      return inside_polygon(polygon, Point<2>(p[0], p[1]));
+      return release_area.contains(p, h);
     return true;
   }
 
@@ -106,7 +83,8 @@ namespace MPM
           "Type",
           "box",
           Patterns::Selection("box|polygon|cells|function|file"),
-          "How the region is given: 'box' (see 'Box'), 'polygon' (2D, see "
+          "How the region is given: 'box' (see 'Box'), 'polygon' (2D: the "
+          "region, 3D: a release area, its footprint and depth; see "
           "'Polygon'), 'cells' (all cells whose material id is 'Cell "
           "material id'), 'function' (where 'Inside function' is positive), "
           "or 'file' (one point per line, see 'Point file').");
@@ -129,11 +107,7 @@ namespace MPM
                           Patterns::Anything(),
                           "Lower and upper corner of the box, in m, "
                           "separated by ':'.");
-        prm.declare_entry("Polygon",
-                          "0, 0 ; 1, 0 ; 1, 1 ; 0, 1",
-                          Patterns::Anything(),
-                          "Vertices x, y of the polygon in m, separated by "
-                          "';' (2D only).");
+        ReleaseArea::declare_parameters(prm, dim);
         prm.declare_entry("Cell material id",
                           "0",
                           Patterns::Integer(0, 255),
@@ -227,12 +201,7 @@ namespace MPM
           }
         else if (r.type == "polygon")
           {
-            check_input(dim == 2, path + "Type = polygon is 2D only.");
-            for (const auto &v :
-                 Utilities::split_string_list(prm.get("Polygon"), ';'))
-              r.polygon.push_back(parse_point<2>(v, path + "Polygon"));
-            check_input(r.polygon.size() >= 3,
-                        path + "Polygon needs at least three vertices.");
+          r.release_area.parse_parameters(prm, dim, path, input_directory);
           }
         else if (r.type == "cells")
           r.cell_material_id = prm.get_integer("Cell material id");
@@ -404,15 +373,13 @@ namespace MPM
       region_box = BoundingBox<dim>({region.box_lower, region.box_upper});
     else if (region.type == "polygon")
       {
+        // In 3D the footprint's prism, any height.
+        const auto bounds = region.release_area.footprint_bounds();
         Point<dim> lo, hi;
-        for (unsigned int d = 0; d < 2; ++d)
+        for (unsigned int d = 0; d < dim; ++d)
           {
-            lo[d] = hi[d] = region.polygon[0][d];
-            for (const auto &v : region.polygon)
-              {
-                lo[d] = std::min(lo[d], v[d]);
-                hi[d] = std::max(hi[d], v[d]);
-              }
+            lo[d] = d < 2 ? bounds[d] : -std::numeric_limits<double>::max();
+            hi[d] = d < 2 ? bounds[2 + d] : std::numeric_limits<double>::max();
           }
         region_box = BoundingBox<dim>({lo, hi});
       }
@@ -430,7 +397,7 @@ namespace MPM
           {
             // Regions are given in the scene's frame.
             BoundingBox<dim> cell_box = cell->bounding_box();
-            if (grid.is_rotated())
+            if (grid.is_rotated() || grid.get_local_origin().norm() > 0)
               {
                 std::vector<Point<dim>> vertices;
                 for (const unsigned int v : cell->vertex_indices())
@@ -506,18 +473,8 @@ namespace MPM
             for (unsigned int d = 0; d < dim; ++d)
               region_volume *= region.box_upper[d] - region.box_lower[d];
           }
-        else if (region.type == "polygon")
-          {
-            // The shoelace formula (2D; the polygon is simple).
-            double twice_area = 0;
-            for (unsigned int i = 0; i < region.polygon.size(); ++i)
-              {
-                const auto &a = region.polygon[i];
-                const auto &b = region.polygon[(i + 1) % region.polygon.size()];
-                twice_area += a[0] * b[1] - b[0] * a[1];
-              }
-            region_volume = 0.5 * std::abs(twice_area);
-          }
+        else if (region.type == "polygon" && dim == 2)
+          region_volume = region.release_area.footprint_area();
         if (region_volume >= 0)
           {
             double created = 0;
@@ -533,7 +490,7 @@ namespace MPM
 
 
   template <int dim>
-  void
+  std::vector<typename PointGenerator<dim>::RegionSummary>
   PointGenerator<dim>::generate(
     const BackgroundGrid<dim>       &grid,
     const MaterialLibrary           &materials,
@@ -545,9 +502,12 @@ namespace MPM
     const MPI_Comm comm       = grid.triangulation.get_communicator();
     const unsigned n_props    = particle_handler.n_properties_per_particle();
     types::particle_index next_id = 0;
+    std::vector<RegionSummary> summaries;
 
     for (const auto &region : regions)
       {
+        RegionSummary summary;
+        summary.name = region.name;
         const auto points = points_of_region(region, grid);
         // Ids of this rank's points start after those of lower ranks.
         unsigned long long n_local = points.size(), first_id = 0;
@@ -581,6 +541,8 @@ namespace MPM
             std::fill(properties.begin(), properties.end(), 0.);
             properties[Layout::mass]   = material.density * p.volume;
             properties[Layout::volume] = p.volume;
+            summary.volume += p.volume;
+            summary.mass += properties[Layout::mass];
             // The functions of the parameter file live in the scene's
             // frame; their values are turned into the mesh's.
             const Point<dim> X = grid.to_scene_frame(p.location);
@@ -633,8 +595,13 @@ namespace MPM
                                                properties));
           }
         next_id += n_total;
+        summary.n_points = n_total;
+        summary.volume   = Utilities::MPI::sum(summary.volume, comm);
+        summary.mass     = Utilities::MPI::sum(summary.mass, comm);
+        summaries.push_back(summary);
       }
     particle_handler.update_cached_numbers();
+    return summaries;
   }
 
 

@@ -79,13 +79,24 @@ namespace MPM
         setup_nodal_fields();
       }
     else
-      point_generator.generate(grid,
-                               materials,
-                               time_stepping.scene_gravity,
-                               particle_handler,
-                               transfer.apic() != nullptr ?
-                                 transfer_slot :
-                                 numbers::invalid_unsigned_int);
+      for (const auto &region :
+           point_generator.generate(grid,
+                                    materials,
+                                    time_stepping.scene_gravity,
+                                    particle_handler,
+                                    transfer.apic() != nullptr ?
+                                      transfer_slot :
+                                      numbers::invalid_unsigned_int))
+        pcout << "Region '" << region.name << "': " << region.n_points
+              << " material points, volume " << region.volume
+              << (dim == 2 ? " m^2" : " m^3") << ", mass " << region.mass
+              << (dim == 2 ? " kg/m\n" : " kg\n");
+    if (grid.get_local_origin().norm() > 0)
+      pcout << "Local origin (Mesh/Local origin): " << std::setprecision(12)
+            << grid.get_local_origin() << std::setprecision(6)
+            << " m: the mesh and the VTU files are at x minus it; the "
+               "parameter file, the statistics and the rasters in map "
+               "coordinates\n";
     // Checked on a resumed run too: its report is that of an
     // uninterrupted run.
     for (const auto &region : point_generator.regions_beyond_mesh(

@@ -56,6 +56,14 @@ namespace MPM
     void
     check_complete() const;
 
+    /// Whether (x, y) lies within the grid's nodes (edges included).
+    bool
+    covers(const double x, const double y) const
+    {
+      return x >= x0 && y >= y0 && x <= node_x(n_x - 1) &&
+             y <= node_y(n_y - 1);
+    }
+
     /// The x, y of the node (i, j).
     double
     node_x(const unsigned int i) const

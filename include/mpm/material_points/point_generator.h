@@ -9,6 +9,7 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/grid/background_grid.h>
+#include <mpm/material_points/release_area.h>
 #include <mpm/materials/material_library.h>
 
 #include <memory>
@@ -70,8 +71,19 @@ namespace MPM
      * gradient of the initial velocity at each point is written there
      * (dim x dim, row-major; APIC's affine matrix starts from it, so that
      * a body set spinning keeps its sub-cell motion from the first step).
+     * Returns each region's number of points, volume and mass (the
+     * released volume of a release area).
      */
-    void
+    /// What generate() created for one region (global sums).
+    struct RegionSummary
+    {
+      std::string           name;
+      types::particle_index n_points = 0;
+      /// m^3 (m^2 per unit thickness in 2D) and kg.
+      double volume = 0, mass = 0;
+    };
+
+    std::vector<RegionSummary>
     generate(const BackgroundGrid<dim>      &grid,
              const MaterialLibrary          &materials,
              const Tensor<1, dim>           &gravity,
@@ -114,7 +126,8 @@ namespace MPM
       std::string                 name;
       std::string                 type;
       Point<dim>                  box_lower, box_upper;
-      std::vector<Point<2>>       polygon;
+      /// Type = polygon: the footprint and, in 3D, the release depth.
+      ReleaseArea                 release_area;
       unsigned int                cell_material_id = 0;
       std::string                 file_name;
       unsigned int                points_per_cell = 2;
