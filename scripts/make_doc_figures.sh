@@ -4,7 +4,7 @@
 #
 # Usage: scripts/make_doc_figures.sh [figure ...]
 #   (no argument: the quick ones, "flume sliding_block landslide
-#   column_collapse"; "all": every figure below, several hours)
+#   hazard_rasters column_collapse"; "all": every figure below, several hours)
 #
 # Figures (time on one core of a shared 2-core machine, roughly):
 #   flume             doc/flume_runout.png, flume_velocity.png, flume_points.png:
@@ -20,6 +20,10 @@
 #   landslide         doc/landslide_valley_3d.png: the deposit of
 #                     prm/landslide_valley_3d.prm over the ground contours,
 #                     scripts/plot_landslide.py (doc/three_d.md). 15-30 s.
+#   hazard_rasters    doc/hazard_rasters.png: the rasters of
+#                     prm/landslide_gis_3d.prm (maximum flow height, speed,
+#                     pressure, deposit) over the DEM's hillshade,
+#                     scripts/plot_hazard_rasters.py (doc/gis.md). 15-30 s.
 #   column_collapse   doc/column_collapse.png (and .csv): runout and final
 #                     height against the aspect ratio a = 0.5 ... 6, 5 mm,
 #                     with Lube et al.'s law, scripts/column_collapse_sweep.sh
@@ -75,8 +79,8 @@ scripts="$MPM_ROOT/scripts"
 doc="$MPM_ROOT/doc"
 python=/usr/bin/python3
 
-quick=(flume sliding_block landslide column_collapse)
-every=(flume sliding_block landslide column_collapse column_collapse_apic_cpdi
+quick=(flume sliding_block landslide hazard_rasters column_collapse)
+every=(flume sliding_block landslide hazard_rasters column_collapse column_collapse_apic_cpdi
        column_collapse_shipped_2p5mm column_collapse_apic_cpdi_2p5mm
        convergence speed_error slope_stability slope_runout)
 figures=("$@")
@@ -107,6 +111,13 @@ for f in "${figures[@]}"; do
         --set "Output/Directory=landslide-valley-3d" > landslide.log
       "$python" "$scripts/plot_landslide.py" "$MPM_ROOT/meshes/valley.asc" \
         landslide-valley-3d "$doc/landslide_valley_3d.png" ;;
+    hazard_rasters)
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/landslide_gis_3d.prm" \
+        --set "Output/Directory=landslide-gis-3d" \
+        --set "Output/Write particles=false" > landslide_gis.log
+      grep -A12 '^## hazard rasters' landslide-gis-3d/report.txt
+      "$python" "$scripts/plot_hazard_rasters.py" landslide-gis-3d \
+        "$MPM_ROOT/meshes/valley_utm.asc" "$doc/hazard_rasters.png" ;;
     column_collapse)
       "$scripts/column_collapse_sweep.sh" ;;
     column_collapse_apic_cpdi)

@@ -15,6 +15,12 @@ shift || true
 parameters=$("$MPM_BUILD_DIR/mpm" --print-parameters "$prm" "$@")
 outdir=$(echo "$parameters" | sed -nE 's/^ *set Directory *= *([^#]*[^ #]).*/\1/p' | head -1)
 postprocessors=$(echo "$parameters" | sed -nE 's/^ *set List of postprocessors *= *([^#]*).*/\1/p')
+if [[ "$postprocessors" == *"hazard rasters"* ]] && [ -x /usr/bin/python3 ]; then
+  # The elevation model, relative to the first .prm file's folder.
+  dem=$(echo "$parameters" | sed -nE 's/^ *set Elevation model *= *([^#]*[^ #]).*/\1/p' | head -1)
+  [[ "$dem" == /* ]] || dem="$(dirname "$prm")/$dem"
+  /usr/bin/python3 "$MPM_ROOT/scripts/plot_hazard_rasters.py" "$outdir" "$dem" || echo "(plotting failed: is python3-matplotlib installed?)"
+fi
 if [[ "$postprocessors" == *flume* ]] && python3_plot=/usr/bin/python3 && [ -x "$python3_plot" ]; then
   "$python3_plot" "$MPM_ROOT/scripts/plot_flume.py" "$outdir" "$outdir" || echo "(plotting failed: is python3-matplotlib installed?)"
 fi

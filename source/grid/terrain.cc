@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -115,9 +117,42 @@ namespace MPM
                 "Elevation model '" + file + "': more values than ncols x "
                 "nrows = " + std::to_string(std::size_t(n_x) * n_y) + ".");
     file_name            = file;
+    header_at_centre     = centre;
     first_column         = 0;
     first_row_from_south = 0;
     file_rows            = n_y;
+  }
+
+
+  void
+  ElevationModel::write_esri_ascii(const std::string &file) const
+  {
+    std::ofstream out(file + ".new");
+    out << std::setprecision(12) << "ncols " << n_x << "\nnrows " << n_y
+        << '\n';
+    if (header_at_centre)
+      out << "xllcenter " << x0 << "\nyllcenter " << y0 << '\n';
+    else
+      out << "xllcorner " << x0 - 0.5 * spacing << "\nyllcorner "
+          << y0 - 0.5 * spacing << '\n';
+    out << "cellsize " << spacing << "\nNODATA_value -9999\n"
+        << std::setprecision(9);
+    for (unsigned int j = n_y; j-- > 0;)
+      {
+        for (unsigned int i = 0; i < n_x; ++i)
+          {
+            const double value = z[std::size_t(j) * n_x + i];
+            out << (i > 0 ? " " : "");
+            if (std::isnan(value))
+              out << "-9999";
+            else
+              out << value;
+          }
+        out << '\n';
+      }
+    out.close();
+    AssertThrow(out, ExcMessage("Could not write " + file + ".new"));
+    std::filesystem::rename(file + ".new", file);
   }
 
 

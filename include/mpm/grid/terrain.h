@@ -37,6 +37,15 @@ namespace MPM
     read_esri_ascii(const std::string &file);
 
     /**
+     * Write the grid as an ESRI ASCII grid, its header in the style the
+     * file read had (xllcenter or xllcorner), NaN as NODATA_value -9999,
+     * 9 significant digits; through @p file.new renamed at the end, so
+     * that a reader never sees half a file.
+     */
+    void
+    write_esri_ascii(const std::string &file) const;
+
+    /**
      * Keep the nodes within [x_min, x_max] x [y_min, y_max] (map
      * coordinates, a node on the rectangle's edge kept). An InputError
      * names @p parameter if fewer than 2 x 2 nodes are left.
@@ -90,6 +99,8 @@ namespace MPM
     /// The file read, and the file's column and row (from the south, 0
     /// based) of node (0, 0) and its number of rows: for messages.
     std::string  file_name;
+    /// The header gave the lower-left cell's centre (xllcenter).
+    bool         header_at_centre = false;
     unsigned int first_column = 0, first_row_from_south = 0, file_rows = 0;
   };
 

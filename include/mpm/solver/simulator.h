@@ -160,6 +160,13 @@ namespace MPM
       return mpi_communicator;
     }
 
+    /// 'Output/Directory', ending in '/'.
+    const std::string &
+    get_output_directory() const
+    {
+      return output_writer.directory();
+    }
+
     /**
      * Sums over all points and ranks.
      */
