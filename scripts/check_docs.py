@@ -93,11 +93,7 @@ CODE_NAME_ALLOWED = {
 # printed as warnings (standard error) instead of failing the check; an
 # entry that no longer matches is a warning too (remove it then).
 # (file, message) -> why it is left.
-KNOWN_PROBLEMS = {
-    ("prm/landslide_valley_3d.prm", "'doc/terrain.md' does not exist"):
-        "the 3D landslide case and its pages are being reworked with the GIS page; "
-        "its comment points at the page that covers it then",
-}
+KNOWN_PROBLEMS = {}
 
 # Programs outside the repository whose names may be qualified (checked in
 # deal.II's headers when they are installed, else accepted).
