@@ -5,7 +5,9 @@
 set -euo pipefail
 
 MPM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin python3-matplotlib)
+# libgdal-dev is optional for the code (GeoTIFF input and output; ESRI ASCII
+# grids work without it), installed here so that the GeoTIFF tests run.
+MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin python3-matplotlib libgdal-dev)
 
 mpm_install_packages() {
   local missing=()

@@ -125,6 +125,34 @@ namespace MPM
 
 
   void
+  ElevationModel::read(const std::string &file)
+  {
+    std::string extension = std::filesystem::path(file).extension().string();
+    std::transform(extension.begin(),
+                   extension.end(),
+                   extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".asc")
+      {
+        read_esri_ascii(file);
+        // An ESRI ASCII grid keeps its coordinate system beside it.
+        std::ifstream prj(std::filesystem::path(file).replace_extension(".prj"));
+        if (prj)
+          projection_wkt.assign(std::istreambuf_iterator<char>(prj),
+                                std::istreambuf_iterator<char>());
+        return;
+      }
+    check_input(gdal_available(),
+                "Raster '" + file + "': not an ESRI ASCII grid (.asc), and "
+                "this build reads other formats only through GDAL, which it "
+                "was built without. Convert it ('gdal_translate -of AAIGrid " +
+                  file + " out.asc'), or install GDAL (Debian: libgdal-dev) "
+                  "and configure the build again.");
+    read_with_gdal(file);
+  }
+
+
+  void
   ElevationModel::write_esri_ascii(const std::string &file) const
   {
     std::ofstream out(file + ".new");
@@ -243,7 +271,8 @@ namespace MPM
     prm.declare_entry("Elevation model",
                       "",
                       Patterns::FileName(),
-                      "ESRI ASCII grid (.asc) of the ground elevation (m); "
+                      "The ground elevation (m): an ESRI ASCII grid (.asc), "
+                      "or with GDAL any raster it reads (GeoTIFF: .tif); "
                       "a relative name is read relative to the .prm file. "
                       "Mesh/Source = terrain builds the mesh on it (3D).");
     prm.declare_entry("Area of interest",
@@ -323,7 +352,7 @@ namespace MPM
     check_input(!dem_file.empty(),
                 "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
                 "is empty.");
-    dem.read_esri_ascii(dem_file);
+    dem.read(dem_file);
     if (!area_of_interest.empty())
       dem.crop(area_of_interest[0],
                area_of_interest[1],

@@ -39,15 +39,17 @@ namespace MPM
                           Patterns::Anything(),
                           "Type = polygon in 3D: how deep the material "
                           "stands over the footprint, measured vertically "
-                          "from the ground: a depth in m, or an ESRI ASCII "
-                          "grid of depths (m; a relative name is read "
-                          "relative to the .prm file; nothing is released "
-                          "outside its extent or at its NODATA nodes).");
+                          "from the ground: a depth in m, or a raster of "
+                          "depths in m (an ESRI ASCII grid, or with GDAL "
+                          "any raster it reads, e.g. GeoTIFF; a relative "
+                          "name is read relative to the .prm file; nothing "
+                          "is released outside its extent or at its NODATA "
+                          "nodes).");
         prm.declare_entry("Release top surface",
                           "",
                           Patterns::FileName(),
                           "Type = polygon in 3D, instead of 'Release depth': "
-                          "an ESRI ASCII grid of the elevation (m) of the "
+                          "a raster (as 'Release depth') of the elevation (m) of the "
                           "released body's top: the material fills the "
                           "footprint from the mesh's ground up to it (the "
                           "pre-failure terrain over a bed with the failure "
@@ -88,7 +90,7 @@ namespace MPM
     if (!top_file.empty())
       {
         top_surface = std::make_shared<ElevationModel>();
-        top_surface->read_esri_ascii(resolve_path(input_directory, top_file));
+        top_surface->read(resolve_path(input_directory, top_file));
         return;
       }
     try
@@ -104,7 +106,7 @@ namespace MPM
     catch (const std::invalid_argument &)
       {
         depth_raster = std::make_shared<ElevationModel>();
-        depth_raster->read_esri_ascii(resolve_path(input_directory, depth_text));
+        depth_raster->read(resolve_path(input_directory, depth_text));
       }
   }
 
@@ -151,10 +153,8 @@ namespace MPM
   std::array<double, 4>
   ReleaseArea::footprint_bounds() const
   {
-    std::array<double, 4> bounds = {rings[0][0][0],
-                                    rings[0][0][1],
-                                    rings[0][0][0],
-                                    rings[0][0][1]};
+    std::array<double, 4> bounds = {
+      {rings[0][0][0], rings[0][0][1], rings[0][0][0], rings[0][0][1]}};
     for (const auto &ring : rings)
       for (const auto &v : ring)
         {
@@ -266,9 +266,11 @@ namespace MPM
     const std::string type = root.get<std::string>("type", "");
     if (type == "FeatureCollection")
       {
-        for (const auto &feature : root.get_child("features", pt::ptree()))
-          if (const auto geometry = feature.second.get_child_optional("geometry"))
-            read_geometry(*geometry);
+        if (const auto features = root.get_child_optional("features"))
+          for (const auto &feature : *features)
+            if (const auto geometry =
+                  feature.second.get_child_optional("geometry"))
+              read_geometry(*geometry);
       }
     else if (type == "Feature")
       {

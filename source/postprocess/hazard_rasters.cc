@@ -10,7 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -24,8 +24,9 @@ namespace MPM
      * largest speed and the largest dynamic pressure over the run, and
      * the deposit's thickness at its end, written as georeferenced ESRI
      * ASCII grids (max_flow_height.asc, max_speed.asc, max_pressure.asc,
-     * deposit_thickness.asc; with the elevation model's .prj beside them
-     * if it has one) that open in any GIS over the DEM.
+     * deposit_thickness.asc; with the elevation model's coordinate system
+     * in a .prj beside each if it has one; or as GeoTIFF with GDAL) that
+     * open in any GIS over the DEM.
      *
      * The raster is the elevation model's own grid (its nodes are the
      * raster's cell centres, so origin and cell size are the DEM's) or one
@@ -69,6 +70,13 @@ namespace MPM
                           "another mesh, over the mesh's horizontal "
                           "bounding box), the first cell centre at the "
                           "extent's lower-left corner.");
+        prm.declare_entry("Raster format",
+                          "esri ascii",
+                          Patterns::Selection("esri ascii|geotiff"),
+                          "'esri ascii': NAME.asc, with NAME.prj holding the "
+                          "elevation model's coordinate system when it has "
+                          "one; 'geotiff': NAME.tif with the coordinate "
+                          "system inside (needs a build with GDAL).");
         prm.declare_entry("Deposit height threshold",
                           "0.01",
                           Patterns::Double(0),
@@ -97,6 +105,11 @@ namespace MPM
                           "size in m.");
           }
         threshold = prm.get_double("Deposit height threshold");
+        geotiff   = prm.get("Raster format") == "geotiff";
+        check_input(!geotiff || ElevationModel::gdal_available(),
+                    "Postprocess/hazard rasters/Raster format = geotiff needs "
+                    "a build with GDAL (Debian: libgdal-dev, then configure "
+                    "the build again); 'esri ascii' works without.");
       }
 
       void
@@ -116,9 +129,7 @@ namespace MPM
       execute(const Simulator<dim> &simulator, const bool output_step) override
       {
         // A resumed run does not call initialize(): the raster's geometry
-        // comes from the checkpoint, the DEM's projection file again.
-        if (projection_file.empty())
-          projection_file = find_projection_file(simulator);
+        // comes from the checkpoint.
         accumulate(simulator);
         if (output_step)
           write_rasters(simulator);
@@ -167,7 +178,8 @@ namespace MPM
       serialize(Archive &ar, const unsigned int)
       {
         ar & raster.n_x & raster.n_y & raster.x0 & raster.y0 &
-          raster.spacing & raster.header_at_centre & height & max_height &
+          raster.spacing & raster.header_at_centre & raster.projection_wkt &
+          height & max_height &
           max_speed & max_pressure & released_volume & released_point_volume &
           released_height;
       }
@@ -178,7 +190,6 @@ namespace MPM
       set_up_raster(const Simulator<dim> &simulator)
       {
         const ElevationModel *dem = simulator.get_grid().elevation_model();
-        projection_file           = find_projection_file(simulator);
         if (dem != nullptr && cell_size_setting == "elevation model")
           {
             raster   = *dem;
@@ -224,24 +235,14 @@ namespace MPM
               1 + static_cast<unsigned int>(
                     std::ceil((upper[1] - lower[1]) / raster.spacing - 1e-9));
             raster.header_at_centre = dem != nullptr && dem->header_at_centre;
+            raster.projection_wkt =
+              dem != nullptr ? dem->projection_wkt : std::string();
           }
         const std::size_t n = std::size_t(raster.n_x) * raster.n_y;
         height.assign(n, 0.);
         max_height.assign(n, 0.);
         max_speed.assign(n, 0.);
         max_pressure.assign(n, 0.);
-      }
-
-      /// The DEM's .prj (its coordinate system), if it has one.
-      static std::string
-      find_projection_file(const Simulator<dim> &simulator)
-      {
-        const ElevationModel *dem = simulator.get_grid().elevation_model();
-        if (dem == nullptr)
-          return "none";
-        const std::filesystem::path prj =
-          std::filesystem::path(dem->file_name).replace_extension(".prj");
-        return std::filesystem::exists(prj) ? prj.string() : "none";
       }
 
       /// Spread the points over the raster's nodes and update the maxima.
@@ -345,12 +346,15 @@ namespace MPM
         for (const auto &[name, values] : maps)
           {
             out.z = *values;
-            out.write_esri_ascii(directory + name + ".asc");
-            if (projection_file != "none")
-              std::filesystem::copy_file(
-                projection_file,
-                directory + name + ".prj",
-                std::filesystem::copy_options::overwrite_existing);
+            if (geotiff)
+              out.write_geotiff(directory + name + ".tif");
+            else
+              {
+                out.write_esri_ascii(directory + name + ".asc");
+                if (!raster.projection_wkt.empty())
+                  std::ofstream(directory + name + ".prj")
+                    << raster.projection_wkt;
+              }
           }
       }
 
@@ -358,8 +362,8 @@ namespace MPM
       double      threshold         = 0.01;
       /// The raster's geometry (its z unused).
       ElevationModel raster;
-      /// The DEM's .prj file, "none", or empty before it is looked for.
-      std::string projection_file;
+      /// 'Raster format = geotiff'.
+      bool geotiff = false;
       /// Flow height now (m), and the maxima of height (m), speed (m/s)
       /// and pressure (Pa) so far, per node, row-major from the south.
       std::vector<double> height, max_height, max_speed, max_pressure;

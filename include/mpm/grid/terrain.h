@@ -37,6 +37,36 @@ namespace MPM
     read_esri_ascii(const std::string &file);
 
     /**
+     * Read @p file by its name: an ESRI ASCII grid (.asc) by
+     * read_esri_ascii(), anything else (GeoTIFF, any raster GDAL reads)
+     * through GDAL, if this build has it (gdal_available()); an
+     * InputError otherwise, naming the conversion that helps. The
+     * coordinate system (projection_wkt) comes from GDAL, or from a .prj
+     * file beside an .asc.
+     */
+    void
+    read(const std::string &file);
+
+    /**
+     * Band 1 of a north-up raster with square cells through GDAL, NODATA
+     * as NaN. Only with GDAL.
+     */
+    void
+    read_with_gdal(const std::string &file);
+
+    /**
+     * Write a GeoTIFF (deflate-compressed, Float64, NODATA -9999) with
+     * projection_wkt as its coordinate system; through @p file.new
+     * renamed at the end. Only with GDAL.
+     */
+    void
+    write_geotiff(const std::string &file) const;
+
+    /// Whether this build reads and writes rasters through GDAL.
+    static bool
+    gdal_available();
+
+    /**
      * Write the grid as an ESRI ASCII grid, its header in the style the
      * file read had (xllcenter or xllcorner), NaN as NODATA_value -9999,
      * 9 significant digits; through @p file.new renamed at the end, so
@@ -101,6 +131,9 @@ namespace MPM
     std::string  file_name;
     /// The header gave the lower-left cell's centre (xllcenter).
     bool         header_at_centre = false;
+    /// The coordinate system as WKT (GDAL's, or a .prj's text), empty if
+    /// unknown.
+    std::string  projection_wkt;
     unsigned int first_column = 0, first_row_from_south = 0, file_rows = 0;
   };
 
