@@ -131,9 +131,10 @@ class Problems:
 
 # --- The parameter tree ----------------------------------------------------
 
-def parse_parameter_listing(text):
-    """Paths (tuples) of the entries in a prm listing, and the lists of names
-    of the per-name sections."""
+def parse_parameter_listing(text, sections=None):
+    """Paths (tuples) of the entries in a prm listing. The paths of its
+    subsections, also of those without entries (a postprocessor or basal
+    law without parameters), are added to the set sections if given."""
     entries = set()
     stack = []
     for line in text.splitlines():
@@ -143,6 +144,8 @@ def parse_parameter_listing(text):
         match = re.match(r"subsection\s+(.*\S)\s*$", stripped)
         if match:
             stack.append(match.group(1))
+            if sections is not None:
+                sections.add(tuple(stack))
             continue
         if stripped == "end":
             if stack:
@@ -403,12 +406,13 @@ def quoted(text, quote):
 # --- The check ----------------------------------------------------------------
 
 class Checker:
-    def __init__(self, entries, instance_names=(), dealii_include=()):
+    def __init__(self, entries, instance_names=(), dealii_include=(), sections=()):
         self.problems = Problems()
         self.entries = entries                      # normalised entry paths
         self.instance_names = set(instance_names)   # materials, regions, boundaries
         self.dealii_include = dealii_include
-        self.sections = {path[:k] for path in entries for k in range(1, len(path))}
+        self.sections = {path[:k] for path in entries for k in range(1, len(path))} | \
+            set(sections)                           # normalised section paths
         self.top_sections = {path[0] for path in self.sections}
         self.entry_names = {path[-1] for path in entries}
         self.section_names = {name for path in self.sections for name in path} - {"*"}
@@ -971,7 +975,7 @@ def main():
         help_call = pool.submit(run, [mpm, "--help"])
         commands = ReadmeCommands(readme, mpm)
         commands.submit(pool)
-        entries = set()
+        entries, sections = set(), set()
         for prm, future in tree_calls:
             status, output, error, seconds = future.result()
             if args.verbose:
@@ -988,11 +992,14 @@ def main():
                 problems_before.append((where, 1, f"mpm --print-parameters fails{what}: "
                                         + " ".join(error.split())[:300]))
                 continue
-            entries |= {normalise(path) for path in parse_parameter_listing(output)}
+            listed_sections = set()
+            entries |= {normalise(path) for path in parse_parameter_listing(output,
+                                                                            listed_sections)}
+            sections |= {normalise(path + ("",))[:-1] for path in listed_sections}
         if not entries:
             print("check_docs.py: no parameter tree read", file=sys.stderr)
             return 2
-        checker = Checker(entries, instance_names(all_prm), args.dealii_include)
+        checker = Checker(entries, instance_names(all_prm), args.dealii_include, sections)
         for item in problems_before:
             checker.problems.add(*item)
         documents = [readme] + sorted(glob.glob(os.path.join(ROOT, "doc", "*.md"))) + \
