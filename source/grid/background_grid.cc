@@ -136,8 +136,9 @@ namespace MPM
                         "Where the background mesh comes from: a Gmsh file "
                         "('gmsh', see 'Gmsh file'), a deal.II GridGenerator "
                         "function ('generator', see 'Generator name'), or "
-                        "terrain-following hexahedra over a digital "
-                        "elevation model ('terrain', 3D, see the subsection "
+                        "terrain-following cells over a digital "
+                        "elevation model ('terrain': in 3D its footprint, in "
+                        "2D a section line through it; see the subsection "
                         "Terrain).");
       prm.declare_entry("Gmsh file",
                         "",
@@ -145,7 +146,7 @@ namespace MPM
                         "Gmsh .msh file (format 2.2 or 4.x) of quadrilaterals. "
                         "Physical tags of boundary lines become boundary ids, "
                         "physical tags of surfaces material ids. A relative "
-                        "name is read relative to the .prm file.");
+                        "name is read relative to the first .prm file's folder.");
       prm.declare_entry(
         "Generator name",
         "subdivided_hyper_rectangle",
@@ -274,10 +275,11 @@ namespace MPM
     if (source == "gmsh")
       check_input(!mesh_file.empty(),
                   "Mesh/Source = gmsh, but 'Mesh/Gmsh file' is empty.");
-    if (source == "terrain")
-      check_input(dim == 3,
-                  "Mesh/Source = terrain builds hexahedra over an elevation "
-                  "model: set Dimension = 3.");
+    if (source == "terrain" && dim == 2)
+      check_input(terrain.section_length() > 0,
+                  "Mesh/Source = terrain in 2D meshes a section through the "
+                  "elevation model: set 'Mesh/Terrain/Section line = x0, "
+                  "y0 : x1, y1' (two different points, map coordinates).");
   }
 
 
@@ -307,10 +309,7 @@ namespace MPM
           }
       }
     else if (source == "terrain")
-      {
-        if constexpr (dim == 3)
-          terrain.create(triangulation);
-      }
+      terrain.create(triangulation);
     else if (generator_name == "subdivided_hyper_rectangle")
       create_subdivided_hyper_rectangle();
     else

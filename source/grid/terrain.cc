@@ -273,7 +273,7 @@ namespace MPM
                       Patterns::FileName(),
                       "The ground elevation (m): an ESRI ASCII grid (.asc), "
                       "or with GDAL any raster it reads (GeoTIFF: .tif); "
-                      "a relative name is read relative to the .prm file. "
+                      "a relative name is read relative to the first .prm file's folder. "
                       "Mesh/Source = terrain builds the mesh on it (3D).");
     prm.declare_entry("Area of interest",
                       "",
@@ -283,6 +283,13 @@ namespace MPM
                       "coordinates, m; nodes on its edge kept); empty: the "
                       "whole grid. NODATA outside it is allowed, inside it "
                       "an input error.");
+    prm.declare_entry("Section line",
+                      "",
+                      Patterns::Anything(),
+                      "2D only: the line 'x0, y0 : x1, y1' (map coordinates, "
+                      "m) through the elevation model along which the 2D "
+                      "mesh follows the ground; the mesh's x is the "
+                      "distance from (x0, y0), its y the elevation.");
     prm.declare_entry("Node stride",
                       "1",
                       Patterns::Integer(1),
@@ -314,7 +321,29 @@ namespace MPM
     height   = prm.get_double("Height above ground");
     layers   = prm.get_integer("Layers");
     const std::string area = Utilities::trim(prm.get("Area of interest"));
+    const std::string line = Utilities::trim(prm.get("Section line"));
     prm.leave_subsection();
+    section = {{0, 0, 0, 0}};
+    if (!line.empty())
+      {
+        std::vector<double> values;
+        for (const auto &end : Utilities::split_string_list(line, ':'))
+          try
+            {
+              const auto xy =
+                Utilities::string_to_double(Utilities::split_string_list(end));
+              values.insert(values.end(), xy.begin(), xy.end());
+            }
+          catch (const std::exception &)
+            {
+              values.clear();
+              break;
+            }
+        check_input(values.size() == 4,
+                    "Mesh/Terrain/Section line = '" + line +
+                      "': give 'x0, y0 : x1, y1'.");
+        std::copy(values.begin(), values.end(), section.begin());
+      }
     area_of_interest.clear();
     if (!area.empty())
       {
@@ -343,6 +372,57 @@ namespace MPM
       }
     check_input(height > 0,
                 "Mesh/Terrain/Height above ground must be positive.");
+  }
+
+
+  void
+  TerrainMesh::create(Triangulation<2> &triangulation)
+  {
+    check_input(!dem_file.empty(),
+                "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
+                "is empty.");
+    dem.read(dem_file);
+    if (!area_of_interest.empty())
+      dem.crop(area_of_interest[0],
+               area_of_interest[1],
+               area_of_interest[2],
+               area_of_interest[3],
+               "Mesh/Terrain/Area of interest");
+    const double length = section_length();
+    for (unsigned int e = 0; e < 2; ++e)
+      check_input(dem.covers(section[2 * e], section[2 * e + 1]),
+                  "Mesh/Terrain/Section line: the point (" +
+                    Utilities::to_string(section[2 * e]) + ", " +
+                    Utilities::to_string(section[2 * e + 1]) +
+                    ") lies outside the elevation model '" + dem_file + "'.");
+    // Cells of about 'Node stride' DEM spacings along the line.
+    const unsigned int n_cells = std::max<unsigned int>(
+      1, static_cast<unsigned int>(std::round(length / (stride * dem.spacing))));
+    profile.clear();
+    std::vector<double> ground(n_cells + 1);
+    for (unsigned int k = 0; k <= n_cells; ++k)
+      {
+        const double s = length * k / n_cells;
+        ground[k]      = section_elevation(s);
+        check_input(std::isfinite(ground[k]),
+                    "Elevation model '" + dem_file +
+                      "': the section line meets a NODATA node at " +
+                      Utilities::to_string(s) +
+                      " m from its start; the mesh needs the ground there.");
+      }
+    GridGenerator::subdivided_hyper_rectangle(triangulation,
+                                              {n_cells, layers},
+                                              Point<2>(0., 0.),
+                                              Point<2>(length, 1.),
+                                              true);
+    GridTools::transform(
+      [&](const Point<2> &p) {
+        const unsigned int k = static_cast<unsigned int>(
+          std::round(p[0] / length * n_cells));
+        return Point<2>(p[0], ground[k] + p[1] * height);
+      },
+      triangulation);
+    profile = ground;
   }
 
 

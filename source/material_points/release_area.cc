@@ -7,7 +7,10 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 namespace MPM
@@ -25,13 +28,12 @@ namespace MPM
     prm.declare_entry("Polygon file",
                       "",
                       Patterns::FileName(),
-                      "Type = polygon: a GeoJSON file whose Polygon and "
-                      "MultiPolygon features (all rings, even-odd rule: "
-                      "holes are holes) make the footprint, in the "
-                      "elevation model's map coordinates; a relative name is "
-                      "read relative to the .prm file. A shapefile "
-                      "converts with 'ogr2ogr -f GeoJSON out.geojson "
-                      "in.shp'.");
+                      "Type = polygon: a GeoJSON file (.geojson, .json; or "
+                      "with GDAL a shapefile or any vector file OGR reads) "
+                      "whose polygons (all rings, even-odd rule: holes are "
+                      "holes) make the footprint, in the elevation model's "
+                      "map coordinates; a relative name is read relative "
+                      "to the .prm file.");
     if (dim == 3)
       {
         prm.declare_entry("Release depth",
@@ -42,7 +44,7 @@ namespace MPM
                           "from the ground: a depth in m, or a raster of "
                           "depths in m (an ESRI ASCII grid, or with GDAL "
                           "any raster it reads, e.g. GeoTIFF; a relative "
-                          "name is read relative to the .prm file; nothing "
+                          "name is read relative to the first .prm file's folder; nothing "
                           "is released outside its extent or at its NODATA "
                           "nodes).");
         prm.declare_entry("Release top surface",
@@ -67,7 +69,28 @@ namespace MPM
     rings.clear();
     const std::string file = prm.get("Polygon file");
     if (!file.empty())
-      rings = read_geojson(resolve_path(input_directory, file));
+      {
+        const std::string name = resolve_path(input_directory, file);
+        std::string extension = std::filesystem::path(name).extension().string();
+        std::transform(extension.begin(),
+                       extension.end(),
+                       extension.begin(),
+                       [](unsigned char c) { return std::tolower(c); });
+        if (extension == ".geojson" || extension == ".json")
+          rings = read_geojson(name);
+        else
+          {
+            check_input(ElevationModel::gdal_available(),
+                        path + "Polygon file = '" + file +
+                          "': not GeoJSON (.geojson, .json), and this build "
+                          "reads other formats only through GDAL, which it "
+                          "was built without. Convert it ('ogr2ogr -f "
+                          "GeoJSON out.geojson " + file +
+                          "') or install GDAL (Debian: libgdal-dev) and "
+                          "configure the build again.");
+            rings = read_with_gdal(name);
+          }
+      }
     else
       {
         rings.emplace_back();

@@ -255,7 +255,8 @@ namespace MPM
 
     /**
      * Height of @p x (mesh frame) above the ground: z - z_g(x, y) on a
-     * terrain mesh (Mesh/Source = terrain), the last coordinate otherwise.
+     * terrain mesh (Mesh/Source = terrain; in 2D the ground along the
+     * section line), the last coordinate otherwise.
      * Point regions use it ('h' in a region function), so that a soil
      * layer of given depth on a hillside is one expression.
      */
@@ -265,8 +266,10 @@ namespace MPM
       if (source == "terrain")
         {
           const Point<dim> map_x = has_local_origin ? x + local_origin : x;
-          return map_x[dim - 1] -
-                 terrain.dem.elevation(map_x[0], dim == 3 ? map_x[1] : 0.);
+          if constexpr (dim == 2)
+            return map_x[1] - terrain.section_elevation(map_x[0]);
+          else
+            return map_x[dim - 1] - terrain.dem.elevation(map_x[0], map_x[1]);
         }
       return x[dim - 1];
     }

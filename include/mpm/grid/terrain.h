@@ -5,6 +5,9 @@
 #include <deal.II/base/point.h>
 #include <deal.II/grid/tria.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -146,6 +149,12 @@ namespace MPM
    * hexahedron whose bottom face lies on the ground. Boundary ids as a
    * colorized box: 0 (x min), 1 (x max), 2 (y min), 3 (y max), 4 (the
    * ground), 5 (the top).
+   *
+   * In 2D, the same along a 'Section line' through the DEM: x is the
+   * distance along the line from its first point, y the elevation;
+   * quadrilaterals in terrain-following layers over the ground profile
+   * sampled every 'Node stride' DEM spacings. Boundary ids: 0 (the
+   * section's start), 1 (its end), 2 (the ground), 3 (the top).
    */
   struct TerrainMesh
   {
@@ -155,15 +164,51 @@ namespace MPM
     void
     parse_parameters(ParameterHandler &prm, const std::string &input_directory);
 
-    /// Read the elevation model and build the mesh (3D only).
+    /// Read the elevation model and build the mesh.
     void
     create(Triangulation<3> &triangulation);
+
+    /// Read the elevation model and build the mesh along the section.
+    void
+    create(Triangulation<2> &triangulation);
+
+    /**
+     * The ground's elevation at distance @p s along the section line: the
+     * DEM's before create(), the mesh's ground after it (linear between
+     * its vertices, which sit on the DEM), so that the height above the
+     * ground is measured from the boundary the points rest on.
+     */
+    double
+    section_elevation(const double s) const
+    {
+      const double length = section_length();
+      if (profile.size() < 2)
+        {
+          const double f = length > 0 ? s / length : 0;
+          return dem.elevation(section[0] + f * (section[2] - section[0]),
+                               section[1] + f * (section[3] - section[1]));
+        }
+      const unsigned int n = profile.size() - 1;
+      const double t = std::clamp(s / length * n, 0., double(n));
+      const unsigned int k = std::min<unsigned int>(n - 1, static_cast<unsigned int>(t));
+      return profile[k] + (t - k) * (profile[k + 1] - profile[k]);
+    }
+
+    double
+    section_length() const
+    {
+      return std::hypot(section[2] - section[0], section[3] - section[1]);
+    }
 
     std::string    dem_file;
     unsigned int   stride = 1, layers = 4;
     double         height = 1;
     /// 'Area of interest' (map coordinates); empty for the whole grid.
     std::vector<double> area_of_interest;
+    /// 2D: 'Section line' x0, y0, x1, y1 (map coordinates), and the
+    /// ground's elevation at the mesh's vertices along it (equally spaced).
+    std::array<double, 4> section = {{0, 0, 0, 0}};
+    std::vector<double>   profile;
     /// The ground, once create() has read it.
     ElevationModel dem;
   };

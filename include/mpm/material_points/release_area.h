@@ -23,9 +23,10 @@ namespace MPM
    * and a release depth.
    *
    * The footprint is listed in the parameter file ('Polygon') or read from
-   * a GeoJSON file ('Polygon file': every Polygon and MultiPolygon of its
-   * features, the format QGIS and GDAL's ogr2ogr write; a shapefile
-   * converts with `ogr2ogr -f GeoJSON release.geojson release.shp`).
+   * a 'Polygon file': GeoJSON (every Polygon and MultiPolygon of its
+   * features, the format QGIS and GDAL's ogr2ogr write) by the code
+   * itself, a shapefile or any vector format OGR reads in a build with
+   * GDAL.
    * Inside is decided by the even-odd rule over all rings, so holes and
    * several polygons need nothing special.
    *
@@ -82,6 +83,14 @@ namespace MPM
      */
     static std::vector<std::vector<Point<2>>>
     read_geojson(const std::string &file);
+
+    /**
+     * The rings of every polygon in a vector file that GDAL/OGR reads
+     * (a shapefile, GeoPackage, ...; all layers). Only in a build with
+     * GDAL (ElevationModel::gdal_available()).
+     */
+    static std::vector<std::vector<Point<2>>>
+    read_with_gdal(const std::string &file);
 
   private:
     std::vector<std::vector<Point<2>>> rings;
