@@ -121,7 +121,7 @@ namespace MPM
                           "thickness in 2D), with 'Initial stress = file' "
                           "followed by the six stress components (Pa); '#' "
                           "starts a comment. A relative name is read "
-                          "relative to the .prm file.");
+                          "relative to the first .prm file's folder.");
         prm.declare_entry("Points per cell",
                           "2",
                           Patterns::Integer(1, 20),

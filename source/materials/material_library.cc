@@ -64,7 +64,7 @@ namespace MPM
       "(scripts/strength_reduction.sh); a ramp such as '1 + 0.05 * t' "
       "finds it in one run if the ramp is slow against the slope's "
       "response; '1 + 0.5 * (t >= 2)' releases a slope settled over 2 s. "
-      "Constants pi and e are known.");
+      "Constants _pi and _e are known.");
     for (const auto &name : names)
       {
         prm.enter_subsection(name);

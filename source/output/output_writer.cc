@@ -53,7 +53,7 @@ namespace MPM
       prm.declare_entry("Write mesh",
                         "true",
                         Patterns::Bool(),
-                        "Write the background mesh once (mesh.pvtu).");
+                        "Write the background mesh once (mesh_0.pvtu).");
       prm.declare_entry("Write point file",
                         "false",
                         Patterns::Bool(),

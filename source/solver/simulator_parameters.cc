@@ -60,7 +60,8 @@ namespace MPM
                       Patterns::MultipleSelection(Postprocessors::names<dim>()),
                       "Comparisons with references that are run during the "
                       "simulation and written to report.txt in the output "
-                      "directory.");
+                      "directory: " +
+                        PostprocessorRegistry<dim>::descriptions());
     prm.leave_subsection();
     Postprocessors::declare_parameters<dim>(prm);
   }
