@@ -4,9 +4,11 @@ hillshade of its elevation model: maximum flow height, maximum speed,
 maximum pressure and deposit thickness, one panel each, in map
 coordinates.
 
-Usage: plot_hazard_rasters.py OUTPUT_DIRECTORY DEM.asc [FIGURE.png]
+Usage: plot_hazard_rasters.py OUTPUT_DIRECTORY DEM [FIGURE.png]
+(ESRI ASCII grids; GeoTIFF DEM and rasters through gdal_translate)
 (default figure: OUTPUT_DIRECTORY/hazard_rasters.png). Needs numpy and
 matplotlib (Debian: python3-matplotlib)."""
+import os
 import sys
 
 import numpy as np
@@ -19,7 +21,18 @@ from matplotlib.colors import LightSource
 
 def read_esri_ascii(name):
     """Values (rows from the north, NaN for NODATA) and the extent of the
-    cells: (x_min, x_max, y_min, y_max)."""
+    cells: (x_min, x_max, y_min, y_max). A raster in another format
+    (GeoTIFF) is converted by GDAL's gdal_translate first, if installed."""
+    if not name.lower().endswith(".asc"):
+        import shutil
+        import subprocess
+        import tempfile
+        if shutil.which("gdal_translate") is None:
+            sys.exit(f"{name}: not an ESRI ASCII grid, and gdal_translate "
+                     "(Debian: gdal-bin) is not installed to convert it")
+        converted = tempfile.mkdtemp() + "/raster.asc"
+        subprocess.run(["gdal_translate", "-q", "-of", "AAIGrid", name, converted], check=True)
+        name = converted
     header = {}
     with open(name) as f:
         while True:
@@ -64,7 +77,10 @@ def main():
     shifted = lambda e: (e[0] - x_ref, e[1] - x_ref, e[2] - y_ref, e[3] - y_ref)
     fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), constrained_layout=True)
     for ax, (name, label, scale, colours) in zip(axes.flat, panels):
-        values, extent = read_esri_ascii(f"{directory}/{name}.asc")
+        file = f"{directory}/{name}.asc"
+        if not os.path.exists(file):
+            file = f"{directory}/{name}.tif"
+        values, extent = read_esri_ascii(file)
         values = values * scale
         # Where the flow never was (0) the hillshade shows through.
         masked = np.ma.masked_where(~(values > 1e-3 * np.nanmax(values)), values)

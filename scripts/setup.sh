@@ -6,8 +6,9 @@ set -euo pipefail
 
 MPM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # libgdal-dev is optional for the code (GeoTIFF input and output; ESRI ASCII
-# grids work without it), installed here so that the GeoTIFF tests run.
-MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin python3-matplotlib libgdal-dev)
+# grids work without it), installed here so that the GeoTIFF tests run;
+# gdal-bin converts GeoTIFF rasters for scripts/plot_hazard_rasters.py.
+MPM_PACKAGES=(libdeal.ii-dev cmake g++ make numdiff ccache gmsh openmpi-bin python3-matplotlib libgdal-dev gdal-bin)
 
 mpm_install_packages() {
   local missing=()
