@@ -646,6 +646,14 @@ class Checker:
         for match in re.finditer(r"(?<![\w./\-])\.\./[\w.\-/]*", text):
             relative = match.group(0)
             resolved = os.path.normpath(os.path.join(os.path.dirname(doc.path), relative))
+            # A file parameter in a command line ('--set "Mesh/Terrain/
+            # Elevation model=../meshes/x.tif"') is read relative to the
+            # prm file, and the shipped ones live in prm/.
+            from_prm = os.path.normpath(os.path.join(ROOT, "prm", relative))
+            if "shared" not in relative.split("/") and \
+                    (from_prm + os.sep).startswith(ROOT + os.sep) and \
+                    os.path.exists(from_prm):
+                continue
             if "shared" in relative.split("/") or \
                     not (resolved + os.sep).startswith(ROOT + os.sep):
                 self.problems.add(doc.path, line + text.count("\n", 0, match.start()),
