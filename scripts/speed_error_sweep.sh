@@ -150,8 +150,10 @@ spinning_body() {
 }
 
 flume() {
-  # Shipped (prm/flume_usgs.prm): 5 mm mesh, 3 x 3 points per cell, CFL
-  # 0.5, MUSL, the FLIP/PIC blend (FLIP fraction 0.98 per 3.3e-5 s). No
+  # prm/flume_usgs.prm as shipped: 5 mm mesh, 3 x 3 points per cell, CFL
+  # 0.5, MUSL, APIC on CPDI weights (the flume rows of doc/speed_error.csv
+  # were measured when it shipped the FLIP/PIC blend, FLIP fraction 0.98
+  # per 3.3e-5 s: rerunning this gives the default path's rows). No
   # analytical reference: the error is the distance of
   # the final front from that of the finest run (CFL 0.25), which runs
   # first and is not itself plotted.

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Throughput in 3D (Release): particle-steps per second of the MPM step,
 # split by the timer sections.
-# - The 3D landslide (prm/landslide_valley_3d.prm: Mohr-Coulomb, MUSL, FLIP
-#   0.98, node-frame friction on the terrain, cells that are not
+# - The 3D landslide (prm/landslide_valley_3d.prm as shipped: Mohr-Coulomb,
+#   MUSL, APIC on CPDI weights (doc/three_d.md's table was measured when
+#   it shipped the FLIP/PIC blend 0.98), node-frame friction on the
+#   terrain, cells that are not
 #   parallelepipeds) with about 1e4, 1e5 and 1.6e6 points (mesh refined 0,
 #   1, 2 times; 3, 3, 4 points per cell per direction), from the release
 #   until 3.2, 0.3 and 0.2 s: at least 2 s of stepping per case on the
