@@ -97,10 +97,14 @@ namespace MPM
                   "H / L = (drop + v0^2/2g - v^2/2g) / horizontal travel\n"
                << "# time (s)  travel L (m)  drop (m)  v^2/2g (m)  H / L\n"
                << table << "initial velocity head v0^2/2g (m): " << head0
-               << "\nat the end: L = " << last_travel
-               << " m, drop = " << last_drop << " m, v^2/2g = " << last_head
-               << " m, H / L = " << last_ratio << ", travel angle "
-               << std::atan(last_ratio) * 180 / M_PI << " deg\n";
+               // One quantity a line, so that scripts/convergence.py
+               // follows each under refinement.
+               << "\nhorizontal travel L at the end (m): " << last_travel
+               << "\ndrop at the end (m): " << last_drop
+               << "\nvelocity head v^2/2g at the end (m): " << last_head
+               << "\nH / L at the end: " << last_ratio
+               << "\ntravel angle at the end (deg): "
+               << std::atan(last_ratio) * 180 / M_PI << '\n';
         if (mu >= 0)
           report << "bed friction coefficient mu: " << mu
                  << " (angle " << std::atan(mu) * 180 / M_PI
