@@ -275,6 +275,10 @@ namespace MPM
     if (source == "gmsh")
       check_input(!mesh_file.empty(),
                   "Mesh/Source = gmsh, but 'Mesh/Gmsh file' is empty.");
+    check_input(dim == 2 || terrain.section_length() == 0,
+                "Mesh/Terrain/Section line is for 2D meshes (a section "
+                "through the elevation model); a 3D terrain mesh covers the "
+                "model's footprint, cropped by 'Area of interest'.");
     if (source == "terrain" && dim == 2)
       check_input(terrain.section_length() > 0,
                   "Mesh/Source = terrain in 2D meshes a section through the "
