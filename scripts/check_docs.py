@@ -945,12 +945,15 @@ class ReadmeCommands:
 
 # --- main -------------------------------------------------------------------------
 
+def default_mpm():
+    """The Release build's mpm if there is one, else the Debug build's."""
+    release = os.path.join(ROOT, "build", "release", "mpm")
+    return release if os.path.exists(release) else os.path.join(ROOT, "build", "debug", "mpm")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    default_mpm = os.path.join(ROOT, "build", "release", "mpm")
-    if not os.path.exists(default_mpm):
-        default_mpm = os.path.join(ROOT, "build", "debug", "mpm")
-    parser.add_argument("--mpm", default=default_mpm, help="the mpm executable")
+    parser.add_argument("--mpm", default=default_mpm(), help="the mpm executable")
     parser.add_argument("--all-prm", action="store_true",
                         help="read the parameter tree of every prm file, not a covering few")
     parser.add_argument("--dealii-include", action="append", default=None, metavar="DIR",

@@ -710,10 +710,7 @@ def generate(mpm, recorded=None, verbose=False):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    default_mpm = os.path.join(ROOT, "build", "release", "mpm")
-    if not os.path.exists(default_mpm):
-        default_mpm = os.path.join(ROOT, "build", "debug", "mpm")
-    parser.add_argument("--mpm", default=default_mpm, help="the mpm executable")
+    parser.add_argument("--mpm", default=check_docs.default_mpm(), help="the mpm executable")
     parser.add_argument("--check", action="store_true",
                         help="compare with the page instead of writing it; exit status 1 "
                              "if it differs")

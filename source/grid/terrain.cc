@@ -375,19 +375,33 @@ namespace MPM
   }
 
 
+  namespace
+  {
+    /// The elevation model of a terrain mesh, cropped to the area of
+    /// interest if one is given (both dimensions).
+    void
+    read_elevation_model(const std::string         &file,
+                         const std::vector<double> &area_of_interest,
+                         ElevationModel            &dem)
+    {
+      check_input(!file.empty(),
+                  "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation "
+                  "model' is empty.");
+      dem.read(file);
+      if (!area_of_interest.empty())
+        dem.crop(area_of_interest[0],
+                 area_of_interest[1],
+                 area_of_interest[2],
+                 area_of_interest[3],
+                 "Mesh/Terrain/Area of interest");
+    }
+  } // namespace
+
+
   void
   TerrainMesh::create(Triangulation<2> &triangulation)
   {
-    check_input(!dem_file.empty(),
-                "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
-                "is empty.");
-    dem.read(dem_file);
-    if (!area_of_interest.empty())
-      dem.crop(area_of_interest[0],
-               area_of_interest[1],
-               area_of_interest[2],
-               area_of_interest[3],
-               "Mesh/Terrain/Area of interest");
+    read_elevation_model(dem_file, area_of_interest, dem);
     const double length = section_length();
     for (unsigned int e = 0; e < 2; ++e)
       check_input(dem.covers(section[2 * e], section[2 * e + 1]),
@@ -429,16 +443,7 @@ namespace MPM
   void
   TerrainMesh::create(Triangulation<3> &triangulation)
   {
-    check_input(!dem_file.empty(),
-                "Mesh/Source = terrain, but 'Mesh/Terrain/Elevation model' "
-                "is empty.");
-    dem.read(dem_file);
-    if (!area_of_interest.empty())
-      dem.crop(area_of_interest[0],
-               area_of_interest[1],
-               area_of_interest[2],
-               area_of_interest[3],
-               "Mesh/Terrain/Area of interest");
+    read_elevation_model(dem_file, area_of_interest, dem);
     dem.check_complete();
     const ElevationModel &model = dem;
     check_input((model.n_x - 1) % stride == 0 && (model.n_y - 1) % stride == 0,

@@ -134,18 +134,32 @@ namespace MPM
   }
 
 
-  bool
-  ReleaseArea::footprint_contains(const double x, const double y) const
+  namespace
   {
-    bool inside = false;
-    for (const auto &ring : rings)
+    /// Whether a ray from (x, y) in +x crosses @p ring an odd number of
+    /// times (the even-odd rule for one ring).
+    bool
+    odd_crossings(const std::vector<Point<2>> &ring, const double x, const double y)
+    {
+      bool odd = false;
       for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++)
         {
           const Point<2> &a = ring[i], &b = ring[j];
           if ((a[1] > y) != (b[1] > y) &&
               x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0])
-            inside = !inside;
+            odd = !odd;
         }
+      return odd;
+    }
+  } // namespace
+
+
+  bool
+  ReleaseArea::footprint_contains(const double x, const double y) const
+  {
+    bool inside = false;
+    for (const auto &ring : rings)
+      inside = inside != odd_crossings(ring, x, y);
     return inside;
   }
 
@@ -208,20 +222,8 @@ namespace MPM
         unsigned int depth_of_nesting = 0;
         for (std::size_t o = 0; o < rings.size(); ++o)
           if (o != r)
-            {
-              bool inside = false;
-              const auto &p = rings[r][0];
-              for (std::size_t i = 0, j = rings[o].size() - 1;
-                   i < rings[o].size();
-                   j = i++)
-                {
-                  const Point<2> &a = rings[o][i], &b = rings[o][j];
-                  if ((a[1] > p[1]) != (b[1] > p[1]) &&
-                      p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0])
-                    inside = !inside;
-                }
-              depth_of_nesting += inside;
-            }
+            depth_of_nesting +=
+              odd_crossings(rings[o], rings[r][0][0], rings[r][0][1]);
         area += (depth_of_nesting % 2 == 0 ? 0.5 : -0.5) * std::abs(twice);
       }
     return area;
