@@ -22,6 +22,7 @@ namespace MPM
                       "each has a subsection of its own. Boundary ids that "
                       "no boundary names are free.");
     prm.leave_subsection();
+    WallGap<dim>::declare_parameters(prm);
   }
 
 
@@ -106,6 +107,7 @@ namespace MPM
   BoundaryConditions<dim>::parse_parameters(ParameterHandler &prm)
   {
     const auto names = read_name_list(prm);
+    wall_gap.parse_parameters(prm);
     prm.enter_subsection("Boundary conditions");
     for (const auto &name : names)
       {
@@ -219,6 +221,7 @@ namespace MPM
     nodes = make_projections(frames, normal_constraints, layout);
     contact_state.assign(nodes.size(), ContactState::free);
     set_contact(merge(contact_before));
+    wall_gap.setup(grid, specs, layout, nodes);
   }
 
 
@@ -233,6 +236,9 @@ namespace MPM
         Tensor<1, dim> v;
         for (unsigned int c = 0; c < dim; ++c)
           v[c] = velocity.local_element(node.local_dofs[c]);
+        // The material has left the wall around the node: free both ways.
+        if (node.frictional && !wall_gap.touches(k))
+          continue;
         const ContactState last = contact == Contact::as_last_update ?
                                     contact_state[k] :
                                     ContactState::free;
@@ -263,7 +269,7 @@ namespace MPM
           for (unsigned int c = 0; c < dim; ++c)
             v[c] = velocity.local_element(nodes[k].local_dofs[c]);
           // apply_friction() has marked the nodes that stick.
-          if (v * nodes[k].normal <= 0)
+          if (v * nodes[k].normal <= 0 || !wall_gap.touches(k))
             contact_state[k] = ContactState::free;
           else if (contact_state[k] != ContactState::stuck)
             contact_state[k] = ContactState::sliding;
@@ -327,6 +333,8 @@ namespace MPM
         const bool held  = contact_state[k] != ContactState::free;
         contact_state[k] = ContactState::free;
         if (mass.local_element(node.local_dofs[0]) <= 0)
+          continue;
+        if (node.frictional && !wall_gap.touches(k))
           continue;
         Tensor<1, dim> v, a;
         for (unsigned int c = 0; c < dim; ++c)

@@ -252,6 +252,16 @@ namespace MPM
     // depends on time).
     materials.set_time(time);
     prepare_transfer();
+    if (boundary_conditions.contact_by_gap())
+      {
+        // Where the material touches the frictional walls (WallGap).
+        TimerOutput::Scope t(timer, "wall contact");
+        boundary_conditions.find_contact(
+          particle_handler,
+          [this](const double *props, const Tensor<1, dim> &n) {
+            return weights->reach_along(props, n);
+          });
+      }
     time_step = compute_time_step();
     point_update.set_time_step(time_step);
     const UpdateScheme scheme = time_stepping.scheme;

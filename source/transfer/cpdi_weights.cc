@@ -1006,6 +1006,21 @@ namespace MPM
 
   template class ParticleGridPasses<2, CpdiWeights<2>>;
   template class ParticleGridPasses<3, CpdiWeights<3>>;
+  template <int dim>
+  double
+  CpdiWeights<dim>::reach_along(const double         *props,
+                                const Tensor<1, dim> &n) const
+  {
+    const auto D = PointDomains<dim>::read(props + this->own_slot);
+    if (D[0].norm_square() == 0)
+      return ParticleGridWeights<dim>::reach_along(props, n);
+    double reach = 0;
+    for (const auto &offset : D)
+      reach = std::max(reach, offset * n);
+    return reach;
+  }
+
+
   template class CpdiWeights<2>;
   template class CpdiWeights<3>;
 } // namespace MPM

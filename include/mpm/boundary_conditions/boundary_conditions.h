@@ -8,6 +8,7 @@
 
 #include <mpm/boundary_conditions/boundary_spec.h>
 #include <mpm/boundary_conditions/wall_constraints.h>
+#include <mpm/boundary_conditions/wall_gap.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
@@ -40,7 +41,9 @@ namespace MPM
    *              material pulls off the wall; friction, acting only where
    *              the wall pushes, would then see more than the body's
    *              weight (measured: 25 % too slow a block at mu = 0.3, see
-   *              doc/validation.md);
+   *              doc/validation.md). With 'Wall contact = gap' a node
+   *              holds the material only while the material also touches
+   *              the wall around it (WallGap);
    *  - velocity: prescribed velocity, given by its normal and tangential
    *              components in the local frame (2D).
    *
@@ -153,6 +156,23 @@ namespace MPM
     void
     project_velocity(NodalVector  &velocity,
                      const Contact contact = Contact::by_velocity) const;
+
+    /**
+     * Measure where the material touches the frictional walls (WallGap)
+     * from the points of this step, located in their cells; collective.
+     */
+    bool
+    contact_by_gap() const
+    {
+      return wall_gap.measures();
+    }
+
+    void
+    find_contact(const Particles::ParticleHandler<dim> &particles,
+                 const typename WallGap<dim>::Reach    &reach)
+    {
+      wall_gap.update(particles, reach);
+    }
 
     /**
      * The projection of the nodal update (the new nodal velocity after the
@@ -275,6 +295,8 @@ namespace MPM
       stuck
     };
     std::vector<ContactState> contact_state;
+    /// Where the material touches the frictional walls.
+    WallGap<dim> wall_gap;
   };
 } // namespace MPM
 

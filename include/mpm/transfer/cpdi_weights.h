@@ -49,6 +49,11 @@ namespace MPM
       return point_domains.point_property_names();
     }
 
+    /// The farthest corner of the point's domain along @p n (the domain
+    /// as the material deformed it, before any shrinking at a wall).
+    double
+    reach_along(const double *props, const Tensor<1, dim> &n) const override;
+
     /// Each cell's patch: where the corners of its points may lie.
     void
     setup_partition() override;

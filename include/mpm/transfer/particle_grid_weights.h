@@ -14,10 +14,12 @@
 #include <mpm/grid/periodic_node_groups.h>
 #include <mpm/grid/q1_shape_functions.h>
 #include <mpm/material_points/point_update.h>
+#include <mpm/material_points/property_layout.h>
 #include <mpm/solver/time_stepping.h>
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -117,6 +119,20 @@ namespace MPM
     second_moment_bounded_below() const
     {
       return false;
+    }
+
+    /**
+     * How far the material of a point (properties @p props) reaches from
+     * its position along the unit vector @p n: where its domain ends
+     * (WallGap measures the material's gap to a wall with it). Without a
+     * domain of their own (linear weights), half the side of a square
+     * (cube) of the point's volume.
+     */
+    virtual double
+    reach_along(const double *props, const Tensor<1, dim> &n) const
+    {
+      (void)n;
+      return 0.5 * std::pow(props[PropertyLayout<dim>::volume], 1. / dim);
     }
 
     /// Property slots the weights keep per point, from @p first_slot
