@@ -264,40 +264,7 @@ namespace MPM
       }
     time_step = compute_time_step();
     point_update.set_time_step(time_step);
-    const UpdateScheme scheme = time_stepping.scheme;
-    // Particle to grid (with the forces, unless USF updates the stress
-    // first).
-    weights->map_mass_and_momentum(scheme != UpdateScheme::usf);
-    compute_nodal_velocity(nodal.velocity);
-    if (scheme == UpdateScheme::usf)
-      {
-        average_nonlocal_variables();
-        weights->update_stress(nodal.velocity, false);
-        weights->map_forces();
-      }
-    if (transfer.scheme().filters_brought_velocity())
-      {
-        TimerOutput::Scope t(timer, "transfer filter");
-        transfer.scheme().filter_brought_velocity(*weights,
-                                                  boundary_conditions,
-                                                  nodal);
-      }
-    update_nodal_kinematics();
-    // Grid to particle (MUSL: and the new momentum back to the nodes).
-    set_max_point_speed(
-      weights->update_points_from_grid(scheme == UpdateScheme::musl));
-    if (scheme == UpdateScheme::usl)
-      {
-        average_nonlocal_variables();
-        weights->update_stress(nodal.velocity_new, false);
-      }
-    else if (scheme == UpdateScheme::musl)
-      {
-        compute_nodal_velocity(nodal.velocity_new);
-        average_nonlocal_variables();
-        weights->update_stress(nodal.velocity_new,
-                               transfer.apic() != nullptr);
-      }
+    time_stepping.step_scheme->advance(*this);
     // For the next step's time step, like the largest point speed.
     if (materials.has_state_dependent_stiffness())
       max_state_wave_speed = Utilities::MPI::max(
@@ -305,6 +272,78 @@ namespace MPM
     time += time_step;
     ++step;
     relocate_points();
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_mass_and_momentum(const bool with_forces)
+  {
+    weights->map_mass_and_momentum(with_forces);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::map_forces()
+  {
+    weights->map_forces();
+  }
+
+
+  template <int dim>
+  NodalVector &
+  Simulator<dim>::nodal_velocity(const NodalVelocity which)
+  {
+    return which == NodalVelocity::brought ? nodal.velocity :
+                                             nodal.velocity_new;
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::compute_nodal_velocity(const NodalVelocity target)
+  {
+    compute_nodal_velocity(nodal_velocity(target));
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_stress(const NodalVelocity source,
+                                const bool          set_affine)
+  {
+    average_nonlocal_variables();
+    weights->update_stress(nodal_velocity(source), set_affine);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::filter_brought_velocity()
+  {
+    if (!transfer.scheme().filters_brought_velocity())
+      return;
+    TimerOutput::Scope t(timer, "transfer filter");
+    transfer.scheme().filter_brought_velocity(*weights,
+                                              boundary_conditions,
+                                              nodal);
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::update_points_from_grid(const bool remap_momentum)
+  {
+    set_max_point_speed(weights->update_points_from_grid(remap_momentum));
+  }
+
+
+  template <int dim>
+  bool
+  Simulator<dim>::has_affine_transfer() const
+  {
+    return transfer.apic() != nullptr;
   }
 
 

@@ -99,7 +99,7 @@ namespace MPM
                            periodic_nodes,
                            timer});
     if (transfer.apic() != nullptr &&
-        time_stepping.scheme != UpdateScheme::musl &&
+        !time_stepping.step_scheme->updates_stress_from_remap() &&
         !weights->second_moment_bounded_below())
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "
                "scheme' USF or USL fits each point's affine matrix to the "

@@ -43,15 +43,10 @@ namespace MPM
                         "Upper bound of the adaptive time step, in s.");
       prm.declare_entry("Update scheme",
                         "MUSL",
-                        Patterns::Selection("USF|USL|MUSL"),
-                        "When the stress is updated: MUSL (Modified Update "
-                        "Stress Last, the default: the stress from the "
-                        "velocity remapped from the updated points; the "
-                        "scheme of every converged granular result in "
-                        "doc/), USF (Update Stress First, before the nodal "
-                        "momentum update; with the FLIP/PIC blend unstable "
-                        "where granular flow stops against a base, "
-                        "doc/flume.md), USL (Update Stress Last).");
+                        Patterns::Selection(StepSchemeRegistry::names()),
+                        "When the stress is updated, the order of a step's "
+                        "operations (source/solver/step_schemes/). " +
+                          StepSchemeRegistry::descriptions());
       prm.declare_entry("Local damping",
                         "0",
                         Patterns::Anything(),
@@ -97,11 +92,10 @@ namespace MPM
       fixed_time_step   = prm.get_double("Time step");
       cfl_number        = prm.get_double("CFL number");
       maximum_time_step = prm.get_double("Maximum time step");
-      scheme = select_choice<UpdateScheme>(prm.get("Update scheme"),
-                                           {{"USF", UpdateScheme::usf},
-                                            {"USL", UpdateScheme::usl},
-                                            {"MUSL", UpdateScheme::musl}},
-                                           "Time stepping/Update scheme");
+      update_scheme = prm.get("Update scheme");
+      step_scheme   = StepSchemeRegistry::create(update_scheme,
+                                               "Time stepping/Update scheme",
+                                               prm);
       const std::string damping = prm.get("Local damping");
       local_damping_function.reset();
       try

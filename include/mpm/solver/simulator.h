@@ -53,6 +53,8 @@ namespace MPM
    *     grid again and the stress updated from that velocity;
    *  8. points that left their cell are relocated.
    *
+   * The order of 1-7 is the StepScheme's ('Time stepping/Update scheme'),
+   * which calls the operations the Simulator offers it (StepOperations).
    * The particle-grid passes (1, 3, 4, 6, 7) are the ParticleGridWeights'
    * chosen in the parameter file; the nodal steps (2, 5) are the
    * Simulator's. Only cells that hold material points take part: every
@@ -60,7 +62,7 @@ namespace MPM
    * those cells.
    */
   template <int dim>
-  class Simulator
+  class Simulator : private StepOperations
   {
   public:
     /**
@@ -265,10 +267,38 @@ namespace MPM
     void
     compute_nodal_velocity(NodalVector &velocity_out);
 
+    /// @name The operations of a step, in the order of the StepScheme.
+    /// @{
+    void
+    map_mass_and_momentum(const bool with_forces) override;
+
+    void
+    map_forces() override;
+
+    void
+    compute_nodal_velocity(const NodalVelocity target) override;
+
+    void
+    update_stress(const NodalVelocity source, const bool set_affine) override;
+
+    void
+    filter_brought_velocity() override;
+
     /// Friction, the step's nodal velocity change and the wall
     /// constraints (doc/algorithm.md).
     void
-    update_nodal_kinematics();
+    update_nodal_kinematics() override;
+
+    void
+    update_points_from_grid(const bool remap_momentum) override;
+
+    bool
+    has_affine_transfer() const override;
+
+    /// nodal.velocity or nodal.velocity_new.
+    NodalVector &
+    nodal_velocity(const NodalVelocity which);
+    /// @}
 
     /// Call @p body(i) for each nodal entry i the step's points touch,
     /// on the available threads (for_each_chunk()).

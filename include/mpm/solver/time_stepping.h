@@ -5,6 +5,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <mpm/solver/step_scheme.h>
+
 #include <memory>
 #include <string>
 
@@ -22,21 +24,6 @@ namespace MPM
   }
 
   using namespace dealii;
-
-  /**
-   * When the stress is updated within an explicit MPM step.
-   */
-  enum class UpdateScheme
-  {
-    /// Update Stress First: strain rate from the nodal velocity mapped from
-    /// the points at the start of the step (the paper's choice).
-    usf,
-    /// Update Stress Last: strain rate from the updated nodal velocity.
-    usl,
-    /// Modified USL: the updated point velocities are mapped back to the
-    /// nodes first and the strain rate computed from those.
-    musl
-  };
 
   /**
    * Parameters of the explicit time integration ("Time stepping" in the
@@ -68,7 +55,9 @@ namespace MPM
     double         fixed_time_step = 1e-4;
     double         cfl_number      = 0.5;
     double         maximum_time_step = 1e100;
-    UpdateScheme   scheme         = UpdateScheme::usf;
+    /// 'Update scheme': the order of a step's operations (StepScheme).
+    std::string                       update_scheme = "MUSL";
+    std::shared_ptr<const StepScheme> step_scheme;
     /// 'Local damping' if it is a number (else its value at t = 0).
     double         local_damping  = 0;
     /// 'Local damping' if it is a function of time, else null.
