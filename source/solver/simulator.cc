@@ -53,16 +53,26 @@ namespace MPM
 
     setup_nodal_fields();
 
-    // The material state, then the transfer scheme's own slots (APIC's
-    // C_p), then the weights' (CPDI's domain).
+    // The points' slots: the fixed ones, the material state, then the
+    // transfer scheme's own (APIC's C_p), then the weights' (CPDI's
+    // domain).
+    point_properties.reset(PropertyLayout<dim>::fixed_names());
+    point_properties.add("material state", state_variable_names());
+    AssertThrow(transfer.scheme().point_property_names().size() ==
+                    transfer.scheme().n_point_properties() &&
+                  weights->point_property_names().size() ==
+                    weights->n_point_properties(),
+                ExcInternalError());
     transfer_slot =
-      PropertyLayout<dim>::state + materials.max_n_state_variables();
+      point_properties.add("transfer scheme",
+                           transfer.scheme().point_property_names());
     const unsigned int weights_slot =
-      transfer_slot + transfer.scheme().n_point_properties();
+      point_properties.add("particle-grid weights",
+                           weights->point_property_names());
     weights->set_property_slots(transfer_slot, weights_slot);
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
-                                weights_slot + weights->n_point_properties());
+                                point_properties.n_slots());
     load_balancing.connect(grid.triangulation, particle_handler);
     // What a removed point takes away, so that the energy check compares
     // the remaining points with what remains available to them.
@@ -377,7 +387,7 @@ namespace MPM
     TimerOutput::Scope t(timer, "output");
     output_writer.mark_written(time);
     output_writer.write_particles(particle_handler,
-                                  property_names(),
+                                  point_properties.names(),
                                   time,
                                   output_index++,
                                   mpi_communicator);

@@ -123,21 +123,16 @@ namespace MPM
 
   template <int dim>
   std::vector<std::string>
-  Simulator<dim>::property_names() const
+  Simulator<dim>::state_variable_names() const
   {
-    auto names = PropertyLayout<dim>::fixed_names();
-    // The state slots: named by the model if there is one material,
-    // generically otherwise.
-    const unsigned int n_state = materials.max_n_state_variables();
-    const auto model_names = materials[0].model->state_variable_names();
+    // Named by the model if there is one material, generically otherwise.
+    const unsigned int       n_state = materials.max_n_state_variables();
+    const auto               model_names = materials[0].model->state_variable_names();
+    std::vector<std::string> names;
     for (unsigned int i = 0; i < n_state; ++i)
       names.push_back(materials.size() == 1 && i < model_names.size() ?
                         model_names[i] :
                         "state_" + std::to_string(i));
-    for (const auto &name : transfer.scheme().point_property_names())
-      names.push_back(name);
-    for (const auto &name : weights->point_property_names())
-      names.push_back(name);
     return names;
   }
 

@@ -11,6 +11,7 @@
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/material_points/point_generator.h>
+#include <mpm/material_points/point_properties.h>
 #include <mpm/material_points/point_relocation.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/output/output_writer.h>
@@ -338,8 +339,10 @@ namespace MPM
     void
     write_output(const bool force);
 
+    /// The names of the material state slots of the points (the model's
+    /// if the scene has one material, else state_0, state_1, ...).
     std::vector<std::string>
-    property_names() const;
+    state_variable_names() const;
 
     MPI_Comm           mpi_communicator;
     ConditionalOStream pcout;
@@ -367,6 +370,8 @@ namespace MPM
     LostPoints<dim>                 lost_points;
 
     Particles::ParticleHandler<dim> particle_handler;
+    /// The slots of the points' property arrays, by owner and name.
+    PointProperties                 point_properties;
 
     NodalFields nodal;
 
