@@ -339,6 +339,20 @@ namespace MPM
     void
     write_output(const bool force);
 
+    /// The end-of-run report of the postprocessors (report.txt, and on
+    /// the screen), with the run's warnings and why it stopped.
+    void
+    write_report() const;
+
+    /// The end-of-run summary on the screen: @p wall seconds in all,
+    /// @p steps_wall of them in the @p steps_this_run steps (the
+    /// throughput), the peak memory, and what the volume bound, the load
+    /// balancing and the point location did. Collective.
+    void
+    print_run_summary(const double       wall,
+                      const double       steps_wall,
+                      const unsigned int steps_this_run) const;
+
     /// The names of the material state slots of the points (the model's
     /// if the scene has one material, else state_0, state_1, ...).
     std::vector<std::string>
