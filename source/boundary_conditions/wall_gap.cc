@@ -70,51 +70,52 @@ namespace MPM
     std::map<unsigned int, unsigned int> node_of_dof;
     for (unsigned int k = 0; k < nodes.size(); ++k)
       if (nodes[k].frictional)
-      {
-        node_of_dof[nodes[k].local_dofs[0]] = k;
-        frictional[k]                       = 1;
-        node_count_dofs[k] = {{nodes[k].local_dofs[0], nodes[k].local_dofs[1]}};
-      }
+        {
+          node_of_dof[nodes[k].local_dofs[0]] = k;
+          frictional[k]                       = 1;
+          node_count_dofs[k]                  = {
+                             {nodes[k].local_dofs[0], nodes[k].local_dofs[1]}};
+        }
     const auto &partitioner = *layout.get_partitioner();
     for (const auto &cell : grid.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               frictional_ids.count(cell->face(f)->boundary_id()))
-          {
-            const auto face = cell->face(f);
-            WallFace   w;
-            w.cell   = cell;
-            w.centre = face->center();
-            // The face's outward normal: from the face's own vertices,
-            // pointing away from the cell's centre.
-            Tensor<1, dim> n;
-            if (dim == 2)
             {
-              const Tensor<1, dim> t = face->vertex(1) - face->vertex(0);
-              n[0]                   = t[1];
-              n[1]                   = -t[0];
+              const auto face = cell->face(f);
+              WallFace   w;
+              w.cell   = cell;
+              w.centre = face->center();
+              // The face's outward normal: from the face's own vertices,
+              // pointing away from the cell's centre.
+              Tensor<1, dim> n;
+              if (dim == 2)
+                {
+                  const Tensor<1, dim> t = face->vertex(1) - face->vertex(0);
+                  n[0]                   = t[1];
+                  n[1]                   = -t[0];
+                }
+              else
+                {
+                  const Tensor<1, dim> d0 = face->vertex(3) - face->vertex(0);
+                  const Tensor<1, dim> d1 = face->vertex(2) - face->vertex(1);
+                  n                       = cross_product_3d(d0, d1);
+                }
+              n /= n.norm();
+              if ((w.centre - cell->center()) * n < 0)
+                n = -n;
+              w.normal = n;
+              for (const unsigned int v : face->vertex_indices())
+                {
+                  const unsigned int dof =
+                    partitioner.global_to_local(face->vertex_dof_index(v, 0));
+                  if (node_of_dof.count(dof))
+                    w.nodes.push_back(node_of_dof[dof]);
+                }
+              if (!w.nodes.empty())
+                faces.push_back(w);
             }
-            else
-            {
-              const Tensor<1, dim> d0 = face->vertex(3) - face->vertex(0);
-              const Tensor<1, dim> d1 = face->vertex(2) - face->vertex(1);
-              n                       = cross_product_3d(d0, d1);
-            }
-            n /= n.norm();
-            if ((w.centre - cell->center()) * n < 0)
-              n = -n;
-            w.normal = n;
-            for (const unsigned int v : face->vertex_indices())
-            {
-              const unsigned int dof =
-                partitioner.global_to_local(face->vertex_dof_index(v, 0));
-              if (node_of_dof.count(dof))
-                w.nodes.push_back(node_of_dof[dof]);
-            }
-            if (!w.nodes.empty())
-              faces.push_back(w);
-          }
     active =
       Utilities::MPI::logical_or(!faces.empty(), layout.get_mpi_communicator());
   }
@@ -129,30 +130,30 @@ namespace MPM
       return;
     counts = 0;
     for (const auto &w : faces)
-    {
-      unsigned int n_near = 0, n_touching = 0;
-      for (const auto &point : particles.particles_in_cell(w.cell))
       {
-        const double r   = reach(point.get_properties().data(), w.normal);
-        const double gap = (w.centre - point.get_location()) * w.normal - r;
-        ++n_near;
-        if (gap <= tolerance * r)
-          ++n_touching;
+        unsigned int n_near = 0, n_touching = 0;
+        for (const auto &point : particles.particles_in_cell(w.cell))
+          {
+            const double r   = reach(point.get_properties().data(), w.normal);
+            const double gap = (w.centre - point.get_location()) * w.normal - r;
+            ++n_near;
+            if (gap <= tolerance * r)
+              ++n_touching;
+          }
+        for (const unsigned int k : w.nodes)
+          {
+            counts.local_element(node_count_dofs[k][0]) += n_near;
+            counts.local_element(node_count_dofs[k][1]) += n_touching;
+          }
       }
-      for (const unsigned int k : w.nodes)
-      {
-        counts.local_element(node_count_dofs[k][0]) += n_near;
-        counts.local_element(node_count_dofs[k][1]) += n_touching;
-      }
-    }
     counts.compress(VectorOperation::add);
     counts.update_ghost_values();
     for (unsigned int k = 0; k < in_contact.size(); ++k)
-    {
-      const auto &d = node_count_dofs[k];
-      in_contact[k] = !frictional[k] || counts.local_element(d[0]) == 0 ||
-                      counts.local_element(d[1]) > 0;
-    }
+      {
+        const auto &d = node_count_dofs[k];
+        in_contact[k] = !frictional[k] || counts.local_element(d[0]) == 0 ||
+                        counts.local_element(d[1]) > 0;
+      }
   }
 
 

@@ -51,7 +51,8 @@ namespace MPM
   {
     const auto removed = lost_points.totals(mpi_communicator);
     if (removed.n_points > 0)
-      pcout << "Removed " << removed.n_points << " material point(s) that left the "
+      pcout << "Removed " << removed.n_points
+            << " material point(s) that left the "
             << "mesh, mass " << removed.mass << " kg.\n";
     pcout << "Done: " << step << " steps, "
           << particle_handler.n_global_particles() << " points, wall time "
@@ -89,9 +90,8 @@ namespace MPM
     if (located.n_points_mapped > 0)
       pcout << "Point location (rank 0): "
             << 100. * located.n_points_moved / located.n_points_mapped
-            << " % of the point-steps changed cell, "
-            << located.n_points_sent << " point(s) sent to another rank; "
-            << located.n_full_sorts
+            << " % of the point-steps changed cell, " << located.n_points_sent
+            << " point(s) sent to another rank; " << located.n_full_sorts
             << " step(s) needed deal.II's full sort; storage put back in "
                "cell order "
             << located.n_reorders << " time(s) (" << located.reorder_seconds

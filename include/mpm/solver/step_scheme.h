@@ -115,14 +115,14 @@ namespace MPM
  * Register the step scheme @p classname (a constructor taking the
  * ParameterHandler; no parameters of its own yet) under @p name.
  */
-#define MPM_REGISTER_STEP_SCHEME(classname, name, description)            \
-  MPM_REGISTER_PLUGIN(MPM::StepSchemeRegistry,                            \
-                      name,                                               \
-                      description,                                        \
-                      nullptr,                                            \
-                      [](dealii::ParameterHandler &prm) {                 \
-                        return std::unique_ptr<MPM::StepScheme>(          \
-                          std::make_unique<classname>(prm));              \
+#define MPM_REGISTER_STEP_SCHEME(classname, name, description)   \
+  MPM_REGISTER_PLUGIN(MPM::StepSchemeRegistry,                   \
+                      name,                                      \
+                      description,                               \
+                      nullptr,                                   \
+                      [](dealii::ParameterHandler &prm) {        \
+                        return std::unique_ptr<MPM::StepScheme>( \
+                          std::make_unique<classname>(prm));     \
                       })
 
 #endif
