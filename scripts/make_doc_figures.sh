@@ -60,6 +60,10 @@
 #   slope_runout      doc/slope_runout.png: prm/slope_runout.prm with and
 #                     without softening, scripts/plot_slope_stability.py
 #                     (doc/slope_stability.md). 2 min.
+#   shear_band        doc/shear_band_softening.png: prm/shear_band_softening.prm
+#                     local and non-local (R = 0.2 m) on 0.1, 0.05, 0.025 m
+#                     cells, scripts/plot_slope_stability.py band
+#                     (doc/slope_stability.md). About 7 min.
 #
 # Environment:
 #   MPM_PREBUILT_DIR  a build holding mpm (and libmpm-core.so beside it):
@@ -82,7 +86,7 @@ python=/usr/bin/python3
 quick=(flume sliding_block landslide hazard_rasters column_collapse)
 every=(flume sliding_block landslide hazard_rasters column_collapse column_collapse_apic_cpdi
        column_collapse_shipped_2p5mm column_collapse_apic_cpdi_2p5mm
-       convergence speed_error slope_stability slope_runout)
+       convergence speed_error slope_stability slope_runout shear_band)
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=("${quick[@]}")
 [ "${figures[*]}" != all ] || figures=("${every[@]}")
@@ -152,6 +156,19 @@ for f in "${figures[@]}"; do
       "$python" "$scripts/plot_slope_stability.py" runout "$doc/slope_runout.png" \
         "slope-runout:3:t = 3 s, released" "slope-runout:5:t = 5 s" "slope-runout:8:t = 8 s" \
         "slope-runout:20:t = 20 s" "slope-runout-no-softening:20:t = 20 s without softening" ;;
+    shear_band)
+      for r in 0 1 2; do
+        for R in 0 0.2; do
+          "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/shear_band_softening.prm" \
+            --set "Mesh/Global refinements=$r" \
+            --set "Materials/soil/mohr coulomb/Strain softening/Nonlocal radius=$R" \
+            --set "Output/Directory=band-R$R-r$r" > band-R$R-r$r.log
+        done
+      done
+      "$python" "$scripts/plot_slope_stability.py" band "$doc/shear_band_softening.png" \
+        "band-R0-r0:local, 0.1 m cells" "band-R0-r1:local, 0.05 m" "band-R0-r2:local, 0.025 m" \
+        "band-R0.2-r0:non-local R = 0.2 m, 0.1 m cells" "band-R0.2-r1:non-local, 0.05 m" \
+        "band-R0.2-r2:non-local, 0.025 m" ;;
   esac
   echo "== $f: $((SECONDS - start)) s"
 done
