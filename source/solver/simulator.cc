@@ -179,27 +179,10 @@ namespace MPM
     const auto partitioner = std::make_shared<Utilities::MPI::Partitioner>(
       grid.locally_owned_dofs, grid.locally_relevant_dofs, mpi_communicator);
     nodal.reinit(partitioner);
-    // The nodal-vector entries of every locally owned cell's vertices,
-    // looked up once: the DoF handler and the partitioner's global-to-local
-    // map are not touched by the steps.
-    using DoFCellIterator = typename DoFHandler<dim>::active_cell_iterator;
-    std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
-    local_dofs_of_cells.assign(grid.triangulation.n_active_cells(), {});
-    for (const auto &tria_cell : grid.triangulation.active_cell_iterators())
-      // Ghost cells too: CPDI's domains reach into them.
-      if (!tria_cell->is_artificial())
-        {
-          const DoFCellIterator cell(&grid.triangulation,
-                                     tria_cell->level(),
-                                     tria_cell->index(),
-                                     &grid.dof_handler);
-          cell->get_dof_indices(cell_dofs);
-          auto &local = local_dofs_of_cells[tria_cell->active_cell_index()];
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int c = 0; c < dim; ++c)
-              local[v][c] = partitioner->global_to_local(
-                cell_dofs[grid.fe.component_to_system_index(c, v)]);
-        }
+    // The nodal-vector entries of every cell's vertices, looked up once:
+    // the DoF handler and the partitioner's global-to-local map are not
+    // touched by the steps.
+    cell_dofs.reinit(grid, *partitioner);
     periodic_nodes.reinit(
       grid.periodic_boundaries.node_groups(grid.dof_handler,
                                            grid.locally_relevant_dofs),

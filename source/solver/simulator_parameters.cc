@@ -95,7 +95,7 @@ namespace MPM
                            time_stepping,
                            step,
                            time_step,
-                           local_dofs_of_cells,
+                           cell_dofs,
                            periodic_nodes,
                            timer});
     if (transfer.apic() != nullptr &&

@@ -99,7 +99,7 @@ namespace MPM
     const BackgroundGrid<dim> &grid = context.grid;
     ActiveCell active{};
     active.n_points    = n;
-    active.dofs        = context.local_dofs_of_cells[cell_index];
+    active.dofs        = context.cell_dofs[cell_index];
     active.vertices    = &grid.cell_vertices(cell_index);
     active.size        = grid.cell_size(cell_index);
     active.first_entry = active_cells.empty() ?

@@ -9,6 +9,7 @@
 
 #include <mpm/boundary_conditions/boundary_conditions.h>
 #include <mpm/grid/background_grid.h>
+#include <mpm/grid/cell_dof_table.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/material_points/point_generator.h>
 #include <mpm/material_points/point_properties.h>
@@ -389,14 +390,8 @@ namespace MPM
 
     NodalFields nodal;
 
-    /**
-     * The local indices into the nodal vectors of each cell's vertex
-     * degrees of freedom (dim per vertex), by active_cell_index(); set up
-     * with the nodal vectors.
-     */
-    std::vector<std::array<std::array<unsigned int, dim>,
-                           GeometryInfo<dim>::vertices_per_cell>>
-      local_dofs_of_cells;
+    /// The nodal-vector entries of each cell's vertices.
+    CellDofTable<dim> cell_dofs;
     /// The nodal entries that 'Mesh/Periodic boundaries' make one node.
     PeriodicNodeGroups periodic_nodes;
 

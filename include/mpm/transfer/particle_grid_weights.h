@@ -10,6 +10,7 @@
 
 #include <mpm/base/plugin_registry.h>
 #include <mpm/grid/background_grid.h>
+#include <mpm/grid/cell_dof_table.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/grid/periodic_node_groups.h>
 #include <mpm/grid/q1_shape_functions.h>
@@ -47,14 +48,9 @@ namespace MPM
     /// The number of steps done, and the step's time step.
     const unsigned int              &step;
     const double                    &time_step;
-    /**
-     * The local indices into the nodal vectors of each cell's vertex
-     * degrees of freedom, as [vertex][component], by active_cell_index()
-     * (every non-artificial cell).
-     */
-    const std::vector<std::array<std::array<unsigned int, dim>,
-                                 GeometryInfo<dim>::vertices_per_cell>>
-                &local_dofs_of_cells;
+    /// The nodal-vector entries of each cell's vertices (every
+    /// non-artificial cell).
+    const CellDofTable<dim> &cell_dofs;
     /// The nodal entries that periodic boundaries make one node.
     const PeriodicNodeGroups &periodic_nodes;
     TimerOutput &timer;

@@ -1,0 +1,34 @@
+#include <deal.II/dofs/dof_handler.h>
+
+#include <mpm/grid/cell_dof_table.h>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  CellDofTable<dim>::reinit(const BackgroundGrid<dim>          &grid,
+                            const Utilities::MPI::Partitioner &partitioner)
+  {
+    using DoFCellIterator = typename DoFHandler<dim>::active_cell_iterator;
+    std::vector<types::global_dof_index> cell_dofs(grid.fe.n_dofs_per_cell());
+    table.assign(grid.triangulation.n_active_cells(), {});
+    for (const auto &tria_cell : grid.triangulation.active_cell_iterators())
+      if (!tria_cell->is_artificial())
+        {
+          const DoFCellIterator cell(&grid.triangulation,
+                                     tria_cell->level(),
+                                     tria_cell->index(),
+                                     &grid.dof_handler);
+          cell->get_dof_indices(cell_dofs);
+          auto &local = table[tria_cell->active_cell_index()];
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < dim; ++c)
+              local[v][c] = partitioner.global_to_local(
+                cell_dofs[grid.fe.component_to_system_index(c, v)]);
+        }
+  }
+
+
+  template class CellDofTable<2>;
+  template class CellDofTable<3>;
+} // namespace MPM
