@@ -22,7 +22,6 @@ namespace MPM
                       "each has a subsection of its own. Boundary ids that "
                       "no boundary names are free.");
     prm.leave_subsection();
-    WallGap<dim>::declare_parameters(prm);
   }
 
 
@@ -46,6 +45,7 @@ namespace MPM
     const std::vector<std::string> &names)
   {
     declare_name_list(prm);
+    WallGap<dim>::declare_parameters(prm);
     prm.enter_subsection("Boundary conditions");
     for (const auto &name : names)
       {

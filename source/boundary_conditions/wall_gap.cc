@@ -1,9 +1,10 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
 
 #include <mpm/boundary_conditions/wall_gap.h>
-#include <mpm/material_points/property_layout.h>
 
-#include <cmath>
 #include <map>
 #include <set>
 
@@ -61,59 +62,48 @@ namespace MPM
         frictional_ids.insert(s.ids.begin(), s.ids.end());
     active = by_gap && !frictional_ids.empty();
     faces.clear();
+    wall_nodes.clear();
     counts.reinit(layout);
     in_contact.assign(nodes.size(), 1);
-    frictional.assign(nodes.size(), 0);
-    node_count_dofs.assign(nodes.size(), {{0, 0}});
     if (!active)
       return;
-    std::map<unsigned int, unsigned int> node_of_dof;
+    std::map<unsigned int, unsigned int> wall_node_of_dof;
     for (unsigned int k = 0; k < nodes.size(); ++k)
       if (nodes[k].frictional)
         {
-          node_of_dof[nodes[k].local_dofs[0]] = k;
-          frictional[k]                       = 1;
-          node_count_dofs[k]                  = {
-                             {nodes[k].local_dofs[0], nodes[k].local_dofs[1]}};
+          wall_node_of_dof[nodes[k].local_dofs[0]] = wall_nodes.size();
+          wall_nodes.push_back(
+            {k, nodes[k].local_dofs[0], nodes[k].local_dofs[1]});
         }
-    const auto &partitioner = *layout.get_partitioner();
+    // Each wall face's plane: the mapping's point and outward normal at
+    // the face's centre (as the node frames take them,
+    // compute_node_frames()).
+    FEFaceValues<dim> face_values(grid.mapping,
+                                  grid.fe,
+                                  QGauss<dim - 1>(1),
+                                  update_quadrature_points |
+                                    update_normal_vectors);
+    const auto       &partitioner = *layout.get_partitioner();
     for (const auto &cell : grid.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         for (const unsigned int f : cell->face_indices())
           if (cell->face(f)->at_boundary() &&
               frictional_ids.count(cell->face(f)->boundary_id()))
             {
-              const auto face = cell->face(f);
-              WallFace   w;
+              face_values.reinit(cell, f);
+              WallFace w;
               w.cell   = cell;
-              w.centre = face->center();
-              // The face's outward normal: from the face's own vertices,
-              // pointing away from the cell's centre.
-              Tensor<1, dim> n;
-              if (dim == 2)
+              w.centre = face_values.quadrature_point(0);
+              w.normal = face_values.normal_vector(0);
+              for (const unsigned int v : cell->face(f)->vertex_indices())
                 {
-                  const Tensor<1, dim> t = face->vertex(1) - face->vertex(0);
-                  n[0]                   = t[1];
-                  n[1]                   = -t[0];
+                  const auto it =
+                    wall_node_of_dof.find(partitioner.global_to_local(
+                      cell->face(f)->vertex_dof_index(v, 0)));
+                  if (it != wall_node_of_dof.end())
+                    w.wall_nodes.push_back(it->second);
                 }
-              else
-                {
-                  const Tensor<1, dim> d0 = face->vertex(3) - face->vertex(0);
-                  const Tensor<1, dim> d1 = face->vertex(2) - face->vertex(1);
-                  n                       = cross_product_3d(d0, d1);
-                }
-              n /= n.norm();
-              if ((w.centre - cell->center()) * n < 0)
-                n = -n;
-              w.normal = n;
-              for (const unsigned int v : face->vertex_indices())
-                {
-                  const unsigned int dof =
-                    partitioner.global_to_local(face->vertex_dof_index(v, 0));
-                  if (node_of_dof.count(dof))
-                    w.nodes.push_back(node_of_dof[dof]);
-                }
-              if (!w.nodes.empty())
+              if (!w.wall_nodes.empty())
                 faces.push_back(w);
             }
     active =
@@ -140,20 +130,17 @@ namespace MPM
             if (gap <= tolerance * r)
               ++n_touching;
           }
-        for (const unsigned int k : w.nodes)
+        for (const unsigned int j : w.wall_nodes)
           {
-            counts.local_element(node_count_dofs[k][0]) += n_near;
-            counts.local_element(node_count_dofs[k][1]) += n_touching;
+            counts.local_element(wall_nodes[j].near_dof) += n_near;
+            counts.local_element(wall_nodes[j].touching_dof) += n_touching;
           }
       }
     counts.compress(VectorOperation::add);
     counts.update_ghost_values();
-    for (unsigned int k = 0; k < in_contact.size(); ++k)
-      {
-        const auto &d = node_count_dofs[k];
-        in_contact[k] = !frictional[k] || counts.local_element(d[0]) == 0 ||
-                        counts.local_element(d[1]) > 0;
-      }
+    for (const auto &node : wall_nodes)
+      in_contact[node.k] = counts.local_element(node.near_dof) == 0 ||
+                           counts.local_element(node.touching_dof) > 0;
   }
 
 

@@ -92,8 +92,7 @@ namespace MPM
       fixed_time_step   = prm.get_double("Time step");
       cfl_number        = prm.get_double("CFL number");
       maximum_time_step = prm.get_double("Maximum time step");
-      update_scheme = prm.get("Update scheme");
-      step_scheme   = StepSchemeRegistry::create(update_scheme,
+      step_scheme = StepSchemeRegistry::create(prm.get("Update scheme"),
                                                "Time stepping/Update scheme",
                                                prm);
       const std::string damping = prm.get("Local damping");

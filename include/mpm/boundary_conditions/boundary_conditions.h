@@ -157,16 +157,18 @@ namespace MPM
     project_velocity(NodalVector  &velocity,
                      const Contact contact = Contact::by_velocity) const;
 
-    /**
-     * Measure where the material touches the frictional walls (WallGap)
-     * from the points of this step, located in their cells; collective.
-     */
+    /// Whether find_contact() measures anything ('Wall contact = gap'
+    /// and a frictional wall).
     bool
     contact_by_gap() const
     {
       return wall_gap.measures();
     }
 
+    /**
+     * Measure where the material touches the frictional walls (WallGap)
+     * from the points of this step, located in their cells; collective.
+     */
     void
     find_contact(const Particles::ParticleHandler<dim> &particles,
                  const typename WallGap<dim>::Reach    &reach)

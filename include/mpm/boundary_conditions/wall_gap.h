@@ -36,9 +36,10 @@ namespace MPM
    * Here the contact also asks the material (Nairn's displacement check,
    * for a rigid wall): for each point in a cell with a face on a
    * frictional wall, the gap between the point's domain and the face's
-   * plane, (x_f - x_p) . n_f - r_p with r_p = V_p^{1/dim} / 2 the half
-   * size of the point's domain; the point touches the wall if that gap is
-   * at most 'Contact gap tolerance' times r_p. A wall node is in contact
+   * plane, (x_f - x_p) . n_f - r_p with r_p how far the point's domain
+   * reaches towards the wall (Reach: ParticleGridWeights::reach_along());
+   * the point touches the wall if that gap is at most 'Contact gap
+   * tolerance' times r_p. A wall node is in contact
    * (held as before) if one of the points in the wall cells around it
    * touches, or if no point lies in those cells (material reaching the
    * node from farther, as CPDI domains do: the rule of the node's velocity
@@ -96,22 +97,32 @@ namespace MPM
     }
 
   private:
+    /// A frictional node: its index among the nodes of setup() and the
+    /// entries of counts that hold its points near and touching.
+    struct WallNode
+    {
+      unsigned int k;
+      unsigned int near_dof;
+      unsigned int touching_dof;
+    };
+    /// A locally owned cell's face on a frictional wall: its plane and
+    /// its vertices' WallNodes.
     struct WallFace
     {
       typename Triangulation<dim>::active_cell_iterator cell;
       Point<dim>                                        centre;
       Tensor<1, dim>                                    normal;
-      std::vector<unsigned int>                         nodes;
+      std::vector<unsigned int>                         wall_nodes;
     };
+    std::vector<WallNode> wall_nodes;
     std::vector<WallFace> faces;
-    /// Per node: [dof 0] points near it, [dof 1] points touching.
-    NodalVector                              counts;
-    std::vector<std::array<unsigned int, 2>> node_count_dofs;
-    std::vector<unsigned char>               in_contact;
-    std::vector<unsigned char>               frictional;
-    bool                                     by_gap    = false;
-    bool                                     active    = false;
-    double                                   tolerance = 0.1;
+    /// Per node (two components of its nodal entries): the points near
+    /// it, the points touching.
+    NodalVector                counts;
+    std::vector<unsigned char> in_contact;
+    bool                       by_gap    = false;
+    bool                       active    = false;
+    double                     tolerance = 0.1;
   };
 } // namespace MPM
 

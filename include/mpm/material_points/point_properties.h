@@ -28,15 +28,11 @@ namespace MPM
     /**
      * A block of slots for @p owner, one per name in @p slot_names (a
      * vector or tensor repeats its name, as the VTU writer groups them);
-     * returns the block's first slot. An owner asks once.
+     * returns the block's first slot, where the owner keeps its data. An
+     * owner asks once.
      */
     unsigned int
     add(const std::string &owner, const std::vector<std::string> &slot_names);
-
-    /// The first slot of @p owner's block (an internal error if it has
-    /// none).
-    unsigned int
-    first_slot(const std::string &owner) const;
 
     /// How many slots a point has.
     unsigned int
@@ -54,8 +50,8 @@ namespace MPM
 
   private:
     std::vector<std::string> names_of_slots;
-    /// Each block's owner and first slot, in the order they were added.
-    std::vector<std::pair<std::string, unsigned int>> blocks;
+    /// The owners of the blocks, in the order they were added.
+    std::vector<std::string> owners;
   };
 } // namespace MPM
 

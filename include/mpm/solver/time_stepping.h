@@ -55,8 +55,7 @@ namespace MPM
     double         fixed_time_step = 1e-4;
     double         cfl_number      = 0.5;
     double         maximum_time_step = 1e100;
-    /// 'Update scheme': the order of a step's operations (StepScheme).
-    std::string                       update_scheme = "MUSL";
+    /// 'Update scheme': the order of a step's operations.
     std::shared_ptr<const StepScheme> step_scheme;
     /// 'Local damping' if it is a number (else its value at t = 0).
     double         local_damping  = 0;
