@@ -58,11 +58,12 @@ namespace MPM
         prm.declare_entry("Type",
                           "fixed",
                           Patterns::Selection(
-                            "free|fixed|slip|friction|velocity"),
+                            "free|fixed|slip|friction|velocity|traction"),
                           "free; fixed (zero velocity); slip (zero normal "
                           "velocity); friction (zero normal velocity and "
                           "the 'Basal law'); velocity (prescribed normal and "
-                          "tangential velocity, 2D).");
+                          "tangential velocity, 2D); traction (free, loaded "
+                          "by the 'Traction').");
         prm.declare_entry("Friction coefficient",
                           "0",
                           Patterns::Double(0),
@@ -96,6 +97,14 @@ namespace MPM
                           "(normal, tangential) components in the node frame; "
                           "the tangent is the outward normal turned by +90 "
                           "degrees.");
+        prm.declare_entry("Traction",
+                          dim == 2 ? "0, 0" : "0, 0, 0",
+                          Patterns::Anything(),
+                          "Force per area in Pa on the boundary's faces for "
+                          "Type = traction, as components in the scene's "
+                          "frame (x, y[, z]); e.g. '0, -1e5' presses a top "
+                          "face down with 100 kPa. It acts on the nodes of "
+                          "the faces that hold material.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -124,7 +133,8 @@ namespace MPM
            {"fixed", BoundaryType::fixed},
            {"slip", BoundaryType::slip},
            {"friction", BoundaryType::friction},
-           {"velocity", BoundaryType::velocity}},
+           {"velocity", BoundaryType::velocity},
+           {"traction", BoundaryType::traction}},
           path + "Type");
         if (s.type == BoundaryType::friction)
           {
@@ -157,6 +167,9 @@ namespace MPM
             s.local_velocity = parse_point<dim>(prm.get("Velocity"),
                                                  path + "Velocity");
           }
+        if (s.type == BoundaryType::traction)
+          s.traction =
+            parse_point<dim>(prm.get("Traction"), path + "Traction");
         prm.leave_subsection();
         specs.push_back(s);
       }
@@ -222,6 +235,7 @@ namespace MPM
     contact_state.assign(nodes.size(), ContactState::free);
     set_contact(merge(contact_before));
     wall_gap.setup(grid, specs, layout, nodes);
+    tractions.setup(grid, specs, layout, periodic_nodes);
   }
 
 
@@ -366,8 +380,10 @@ namespace MPM
   BoundaryConditions<dim>::does_work() const
   {
     return std::any_of(specs.begin(), specs.end(), [](const auto &spec) {
-      return spec.type == BoundaryType::velocity &&
-             spec.local_velocity.norm() > 0;
+      return (spec.type == BoundaryType::velocity &&
+              spec.local_velocity.norm() > 0) ||
+             (spec.type == BoundaryType::traction &&
+              spec.traction.norm() > 0);
     });
   }
 

@@ -237,7 +237,7 @@ namespace MPM
             for (unsigned int s = 0; s < specs.size(); ++s)
               {
                 if (touches[s].local_element(local0) == 0 ||
-                    specs[s].type == BoundaryType::free)
+                    !is_wall(specs[s].type))
                   continue;
                 Tensor<1, dim> weighted;
                 for (unsigned int c = 0; c < dim; ++c)

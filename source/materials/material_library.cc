@@ -87,6 +87,23 @@ namespace MPM
           "doc/robustness.md) and, landing again, a point of that volume "
           "is struck by the first compression with the force of as many "
           "points.");
+        prm.declare_entry(
+          "Porosity",
+          "0",
+          Patterns::Double(0, 1),
+          "Porosity n of a saturated material, 0 <= n < 1: 0 (dry) "
+          "or the volume fraction of its pores, which are full of water "
+          "('Pore water'; doc/pore_water.md). Then 'Density' is the "
+          "solid's mass per volume of the mixture, the dry density "
+          "(1 - n) rho_s, and the model's stress is the effective "
+          "stress.");
+        prm.declare_entry(
+          "Permeability",
+          "0",
+          Patterns::Double(0),
+          "Intrinsic permeability k in m^2 of a saturated material "
+          "(Porosity > 0); must then be > 0. Its hydraulic conductivity "
+          "is k rho_w g / mu (1e-11 m^2 is about 1e-4 m/s).");
         prm.declare_entry("Model",
                           "linear elastic",
                           Patterns::Selection(
@@ -138,6 +155,17 @@ namespace MPM
                       prm.get("Minimum density") +
                       ": must be at least 0 and at most the material's "
                       "Density, " + prm.get("Density") + " kg/m^3.");
+        m.porosity     = prm.get_double("Porosity");
+        m.permeability = prm.get_double("Permeability");
+        check_input(m.porosity < 1,
+                    "Materials/" + name + "/Porosity = " +
+                      prm.get("Porosity") + ": must be below 1.");
+        check_input(m.porosity == 0 || m.permeability > 0,
+                    "Materials/" + name + "/Permeability = " +
+                      prm.get("Permeability") +
+                      ": a saturated material (Porosity " +
+                      prm.get("Porosity") + ") needs a permeability > 0 "
+                      "(m^2).");
         const std::string model = prm.get("Model");
         try
           {

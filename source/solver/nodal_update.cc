@@ -34,6 +34,17 @@ namespace MPM
     TimerOutput::Scope t(timer, "nodal update");
     const double       dt    = time_step;
     const double       alpha = time_stepping.local_damping_at(time);
+    boundary_conditions.add_traction_forces(nodal.mass,
+                                            weights->active_dofs(),
+                                            nodal.force);
+    if (pore_water.active())
+      {
+        // The skeleton's force becomes the one that gives its velocity
+        // with the water's drag (PoreWater::couple()).
+        TimerOutput::Scope t(timer, "pore water");
+        weights->map_phase(pore_water);
+        pore_water.couple(nodal, weights->active_dofs());
+      }
     for_each_active_dof([&](const unsigned int i) {
       const double m = nodal.mass.local_element(i);
       double       f = nodal.force.local_element(i);
@@ -72,6 +83,8 @@ namespace MPM
       dt * nodal.acceleration.local_element(i);
     });
     boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
+    if (pore_water.active())
+      pore_water.constrain(boundary_conditions);
     // The acceleration consistent with the constrained velocity change
     // from u, so that the FLIP update of the points respects the
     // constraints too.

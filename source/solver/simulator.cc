@@ -50,6 +50,8 @@ namespace MPM
     time_stepping.gravity = grid.to_mesh_frame(time_stepping.scene_gravity);
     boundary_conditions.check_boundary_ids(grid);
     boundary_conditions.set_gravity(time_stepping.gravity);
+    // Before the nodal fields are laid out: the water's are among them.
+    pore_water.initialize(materials, nodal);
 
     setup_nodal_fields();
 
@@ -70,6 +72,9 @@ namespace MPM
       point_properties.add("particle-grid weights",
                            weights->point_property_names());
     weights->set_property_slots(transfer_slot, weights_slot);
+    if (pore_water.active())
+      pore_water.set_first_slot(
+        point_properties.add("pore water", pore_water.point_property_names()));
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
                                 point_properties.n_slots());
@@ -101,6 +106,8 @@ namespace MPM
               << " material points, volume " << region.volume
               << (dim == 2 ? " m^2" : " m^3") << ", mass " << region.mass
               << (dim == 2 ? " kg/m\n" : " kg\n");
+    if (!checkpointing.resume() && pore_water.active())
+      pore_water.initialize_points(particle_handler, grid);
     if (grid.get_local_origin().norm() > 0)
       pcout << "Local origin (Mesh/Local origin): " << std::setprecision(12)
             << grid.get_local_origin() << std::setprecision(6)
@@ -211,10 +218,14 @@ namespace MPM
       materials.has_state_dependent_stiffness() ?
         std::max(materials.max_constant_wave_speed(), max_state_wave_speed) :
         materials.max_wave_speed();
+    const double fastest_wave =
+      pore_water.active() ?
+        std::max(wave_speed, pore_water.max_wave_speed(materials)) :
+        wave_speed;
     if (time_stepping.adaptive)
       dt = std::min(time_stepping.maximum_time_step,
                     time_stepping.cfl_number * active_cell_size /
-                      (wave_speed + max_point_speed));
+                      (fastest_wave + max_point_speed));
     // Land on the end time exactly rather than overshoot it.
     if (time + dt > effective_end_time(time_stepping.end_time))
       dt = time_stepping.end_time - time;
@@ -257,6 +268,10 @@ namespace MPM
       }
     time_step = compute_time_step();
     point_update.set_time_step(time_step);
+    if (pore_water.active())
+      pore_water.set_step(time_step,
+                          transfer.scheme().flip_fraction(time_step),
+                          time_stepping.gravity);
     time_stepping.step_scheme->advance(*this);
     // For the next step's time step, like the largest point speed.
     if (materials.has_state_dependent_stiffness())
@@ -328,6 +343,14 @@ namespace MPM
   void
   Simulator<dim>::update_points_from_grid(const bool remap_momentum)
   {
+    if (pore_water.active())
+      {
+        // Under the weights of the step, before the skeleton's update
+        // moves the points.
+        TimerOutput::Scope t(timer, "pore water");
+        pore_water.set_skeleton_velocity(nodal.velocity_new);
+        weights->update_phase_points(pore_water);
+      }
     set_max_point_speed(weights->update_points_from_grid(remap_momentum));
   }
 

@@ -42,6 +42,7 @@ namespace MPM
     declare_dimension(prm);
     BackgroundGrid<dim>::declare_parameters(prm);
     MaterialLibrary::declare_parameters(prm, names.materials);
+    PoreWater<dim>::declare_parameters(prm);
     PointGenerator<dim>::declare_parameters(prm, names.regions);
     LostPoints<dim>::declare_parameters(prm);
     PointRelocation<dim>::declare_parameters(prm);
@@ -78,6 +79,7 @@ namespace MPM
     parameters_text = all_parameters.str();
     grid.parse_parameters(prm, input_directory);
     materials.parse_parameters(prm);
+    pore_water.parse_parameters(prm);
     point_generator.parse_parameters(prm, materials, input_directory);
     lost_points.parse_parameters(prm);
     point_relocation.parse_parameters(prm);

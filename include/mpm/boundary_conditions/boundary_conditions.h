@@ -7,6 +7,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <mpm/boundary_conditions/boundary_spec.h>
+#include <mpm/boundary_conditions/surface_tractions.h>
 #include <mpm/boundary_conditions/wall_constraints.h>
 #include <mpm/boundary_conditions/wall_gap.h>
 #include <mpm/grid/background_grid.h>
@@ -230,6 +231,19 @@ namespace MPM
                    NodalVector       &acceleration,
                    const double       dt);
 
+    /**
+     * Add the forces of the boundaries' tractions ('Type = traction') to
+     * @p force at the local entries @p active_dofs with mass
+     * (SurfaceTractions).
+     */
+    void
+    add_traction_forces(const NodalVector               &mass,
+                        const std::vector<unsigned int> &active_dofs,
+                        NodalVector                     &force) const
+    {
+      tractions.add_to(mass, active_dofs, force);
+    }
+
     const AffineConstraints<double> &
     constraints() const
     {
@@ -271,7 +285,7 @@ namespace MPM
     {
       std::set<types::boundary_id> ids;
       for (const auto &spec : specs)
-        if (spec.type != BoundaryType::free)
+        if (is_wall(spec.type))
           ids.insert(spec.ids.begin(), spec.ids.end());
       return ids;
     }
@@ -299,6 +313,8 @@ namespace MPM
     std::vector<ContactState> contact_state;
     /// Where the material touches the frictional walls.
     WallGap<dim> wall_gap;
+    /// The loads of the boundaries of Type = traction.
+    SurfaceTractions<dim> tractions;
   };
 } // namespace MPM
 

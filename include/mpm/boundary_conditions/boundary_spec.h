@@ -26,8 +26,18 @@ namespace MPM
     /// Unilateral contact with a basal law on the tangential velocity.
     friction,
     /// Prescribed (normal, tangential) velocity in the node frame (2D).
-    velocity
+    velocity,
+    /// No constraint; a load, the 'Traction' (SurfaceTractions).
+    traction
   };
+
+  /// Whether a boundary of type @p type holds the material's velocity
+  /// (a wall), rather than leaving it free.
+  inline bool
+  is_wall(const BoundaryType type)
+  {
+    return type != BoundaryType::free && type != BoundaryType::traction;
+  }
 
 
   /**
@@ -47,6 +57,8 @@ namespace MPM
     Tensor<1, dim>                  given_normal;
     /// (normal, tangential) velocity for Type = velocity.
     Tensor<1, dim>                  local_velocity;
+    /// Force per area (Pa) for Type = traction, in the scene's frame.
+    Tensor<1, dim>                  traction;
   };
 } // namespace MPM
 

@@ -28,6 +28,13 @@ namespace MPM
     /// most its mass over this (0: no bound; PointUpdate::update_stress()).
     double                         minimum_density = 0;
     std::unique_ptr<MaterialModel> model;
+    /// 'Porosity' n: 0 for a dry material; above 0 its pores are full of
+    /// water (PoreWater) and 'Density' is the solid's mass per volume of
+    /// the mixture, the dry density (1 - n) rho_s.
+    double porosity = 0;
+    /// 'Permeability': the intrinsic permeability k (m^2) of a saturated
+    /// material; the drag on the water is n^2 mu / k (v_w - v_s).
+    double permeability = 0;
     /// model->stiffness_depends_on_state(), asked once when parsed: the
     /// stress update reads it for every point.
     bool state_dependent_stiffness = false;

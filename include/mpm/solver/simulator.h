@@ -16,6 +16,7 @@
 #include <mpm/material_points/point_relocation.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/output/output_writer.h>
+#include <mpm/phases/pore_water.h>
 #include <mpm/parallel/load_balancing.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/restart/checkpointing.h>
@@ -126,6 +127,13 @@ namespace MPM
     get_grid() const
     {
       return grid;
+    }
+
+    /// The pore water of saturated materials (PoreWater::active()).
+    const PoreWater<dim> &
+    get_pore_water() const
+    {
+      return pore_water;
     }
 
     const BoundaryConditions<dim> &
@@ -366,6 +374,8 @@ namespace MPM
 
     BackgroundGrid<dim>             grid;
     MaterialLibrary                 materials;
+    /// The water in the pores of saturated materials.
+    PoreWater<dim>                  pore_water;
     PointGenerator<dim>             point_generator;
     PointRelocation<dim>            point_relocation;
     BoundaryConditions<dim>         boundary_conditions;

@@ -99,6 +99,12 @@ namespace MPM
     void
     second_moments(std::vector<Tensor<2, dim>> &D) const override;
 
+    void
+    map_phase(PhaseKernel<dim> &kernel) override;
+
+    void
+    update_phase_points(PhaseKernel<dim> &kernel) override;
+
   protected:
     using typename ParticleGridWeights<dim>::ActiveCell;
 
@@ -260,6 +266,11 @@ namespace MPM
     /// hands to the grid (weights whose entries are not the points).
     std::vector<AffineFitSums>  point_affine_fit;
     std::vector<Tensor<2, dim>> point_affine, point_second_moment;
+    /// update_phase_points(): per point and source field, the sums of
+    /// the values and gradients over its entries (weights whose entries
+    /// are not the points).
+    std::vector<Tensor<1, dim>> phase_values;
+    std::vector<Tensor<2, dim>> phase_gradients;
   };
 } // namespace MPM
 

@@ -732,6 +732,127 @@ namespace MPM
             D[weights().point_of_entry(k)] += D_k;
         }
   }
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::map_phase(PhaseKernel<dim> &kernel)
+  {
+    using Kernel                 = PhaseKernel<dim>;
+    const typename Kernel::Targets targets = kernel.grid_targets();
+    this->template for_active_cells<Kernel::max_targets>(
+      targets,
+      [&](const unsigned int c,
+          const unsigned int,
+          typename Kernel::Sums &sums) {
+        const ActiveCell  &cell = this->active_cells[c];
+        const unsigned int end  = cell.first_entry + cell.n_points;
+        for (unsigned int k = cell.first_entry; k < end; ++k)
+          kernel.add_to_grid(this->points[weights().point_of_entry(k)],
+                             this->shape_functions[k],
+                             sums);
+      });
+    for (NodalVector *target : targets)
+      if (target != nullptr)
+        this->add_contributions_of_all_ranks(*target);
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::update_phase_points(
+    PhaseKernel<dim> &kernel)
+  {
+    using Kernel                      = PhaseKernel<dim>;
+    constexpr unsigned int n_sources  = Kernel::max_sources;
+    const typename Kernel::Sources sources = kernel.grid_sources();
+    // One entry's values and gradients of every source, added to @p value
+    // and @p gradient.
+    const auto add_entry = [&](const ActiveCell                    &cell,
+                               const unsigned int                   k,
+                               Tensor<1, dim>                      *value,
+                               Tensor<2, dim>                      *gradient) {
+      const auto &sf = this->shape_functions[k];
+      for (unsigned int s = 0; s < n_sources; ++s)
+        if (sources[s] != nullptr)
+          {
+            const VertexValues u = this->read_nodes(cell, *sources[s]);
+            for (unsigned int i = 0; i < n_vertices; ++i)
+              {
+                value[s] += sf.value[i] * u[i];
+                gradient[s] += outer_product(u[i], sf.gradient[i]);
+              }
+          }
+    };
+    if constexpr (Weights::entries_are_points)
+      for_each_chunk(this->active_cells.size(),
+                     this->cell_chunk_size,
+                     [&](const unsigned int,
+                         const unsigned int first,
+                         const unsigned int last) {
+                       for (unsigned int c = first; c < last; ++c)
+                         {
+                           const ActiveCell  &cell = this->active_cells[c];
+                           const unsigned int end =
+                             cell.first_entry + cell.n_points;
+                           for (unsigned int k = cell.first_entry; k < end;
+                                ++k)
+                             {
+                               std::array<Tensor<1, dim>, n_sources> values;
+                               std::array<Tensor<2, dim>, n_sources> gradients;
+                               add_entry(cell, k, values.data(),
+                                         gradients.data());
+                               kernel.update_point(this->points[k],
+                                                   values,
+                                                   gradients);
+                             }
+                         }
+                     });
+    else
+      {
+        // A point's entries lie in several cells: summed per point first
+        // (on one thread, in the order of the entries), then each point
+        // updated.
+        const unsigned int n_points = this->points.size();
+        phase_values.assign(std::size_t(n_points) * n_sources,
+                            Tensor<1, dim>());
+        phase_gradients.assign(std::size_t(n_points) * n_sources,
+                               Tensor<2, dim>());
+        for (const ActiveCell &cell : this->active_cells)
+          {
+            const unsigned int end = cell.first_entry + cell.n_points;
+            for (unsigned int k = cell.first_entry; k < end; ++k)
+              {
+                const std::size_t p = weights().point_of_entry(k);
+                add_entry(cell,
+                          k,
+                          &phase_values[p * n_sources],
+                          &phase_gradients[p * n_sources]);
+              }
+          }
+        for_each_chunk(n_points,
+                       chunk_size_for(n_points),
+                       [&](const unsigned int,
+                           const unsigned int first,
+                           const unsigned int last) {
+                         for (unsigned int p = first; p < last; ++p)
+                           {
+                             std::array<Tensor<1, dim>, n_sources> values;
+                             std::array<Tensor<2, dim>, n_sources> gradients;
+                             for (unsigned int s = 0; s < n_sources; ++s)
+                               {
+                                 values[s] =
+                                   phase_values[std::size_t(p) * n_sources + s];
+                                 gradients[s] =
+                                   phase_gradients[std::size_t(p) * n_sources +
+                                                   s];
+                               }
+                             kernel.update_point(this->points[p],
+                                                 values,
+                                                 gradients);
+                           }
+                       });
+      }
+  }
 } // namespace MPM
 
 #endif

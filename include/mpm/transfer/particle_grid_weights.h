@@ -17,6 +17,7 @@
 #include <mpm/material_points/point_update.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/solver/time_stepping.h>
+#include <mpm/transfer/phase_kernel.h>
 #include <mpm/transfer/velocity_transfer.h>
 
 #include <array>
@@ -223,6 +224,24 @@ namespace MPM
      */
     virtual void
     second_moments(std::vector<Tensor<2, dim>> &D) const = 0;
+
+    /**
+     * Particle to grid for a phase other than the skeleton (PoreWater):
+     * every point's share at each of its weight sets, as @p kernel says
+     * (PhaseKernel::add_to_grid()), added to the kernel's nodal fields and
+     * summed over the ranks.
+     */
+    virtual void
+    map_phase(PhaseKernel<dim> &kernel) = 0;
+
+    /**
+     * Grid to particle for such a phase: the values and gradients at each
+     * point of the kernel's nodal fields, handed to
+     * PhaseKernel::update_point(). Before the points move to other cells
+     * (the weights of the step).
+     */
+    virtual void
+    update_phase_points(PhaseKernel<dim> &kernel) = 0;
 
     /// The properties of this rank's points, in the order of the passes
     /// (valid from prepare() until the points move between cells).

@@ -1,0 +1,230 @@
+#ifndef mpm_phases_pore_water_h
+#define mpm_phases_pore_water_h
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/particles/particle_handler.h>
+
+#include <mpm/grid/background_grid.h>
+#include <mpm/grid/nodal_vector.h>
+#include <mpm/materials/material_library.h>
+#include <mpm/transfer/phase_kernel.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  template <int dim>
+  class BoundaryConditions;
+
+  /**
+   * The water in the pores of saturated materials ('Materials/NAME/
+   * Porosity' > 0): the single-point, two-phase (v-w) formulation of the
+   * explicit MPM of Bandara and Soga (2015), as the paper's group has it
+   * (mpm_explicit_twophase): every point of a saturated material carries,
+   * besides the skeleton's mass, velocity and effective stress, the water's
+   * velocity v_w, the pore pressure p (compression positive) and the
+   * porosity n (doc/pore_water.md). Per step:
+   *
+   *  - particle to grid (map_to_grid()): water mass n rho_w V N_i and
+   *    momentum; the water's force n p V grad N_i + N_i m_w g; the share of
+   *    the pore pressure the skeleton carries, (1 - n) p V grad N_i (the
+   *    skeleton's force of the dry passes holds its effective stress);
+   *    the drag coefficient N_i V n^2 mu / k;
+   *  - at each node, the two momentum equations with the drag implicit
+   *    (couple()), m_s (v_s' - v_s) / dt = F_s + Q (v_w' - v_s') and
+   *    m_w (v_w' - v_w) / dt = F_w - Q (v_w' - v_s'), solved as a 2 x 2
+   *    system per component: unconditionally stable in the drag, so that a low permeability does not shorten the step. The
+   *    skeleton's solution enters the dry nodal update as its force
+   *    (friction and walls act on it as on a dry skeleton); the water is
+   *    held by the walls' normal constraints (impermeable walls);
+   *  - grid to particle (update_points()): v_w by the FLIP/PIC share of
+   *    the transfer scheme (PIC under APIC), then p from the water's
+   *    balance dp = -(K_w / n) ((1 - n) div v_s + n div v_w) dt and
+   *    n from the skeleton's volume change dn = (1 - n) div v_s dt, with
+   *    the end-of-step nodal velocities.
+   *
+   * A boundary without a wall drains: the weak form has no pressure term
+   * there, which is p = 0.
+   */
+  template <int dim>
+  class PoreWater : public PhaseKernel<dim>
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    /**
+     * Whether any material of @p materials is saturated: only then does
+     * the scene have the water's point slots, nodal fields and passes.
+     * Registers the nodal fields with @p nodal.
+     */
+    void
+    initialize(const MaterialLibrary &materials, NodalFields &nodal);
+
+    bool
+    active() const
+    {
+      return is_active;
+    }
+
+    /// The names of the water's point slots (PointProperties).
+    std::vector<std::string>
+    point_property_names() const;
+
+    void
+    set_first_slot(const unsigned int slot)
+    {
+      first_slot = slot;
+    }
+
+    /// @name Where a point keeps the water's data (from its first slot).
+    /// @{
+    unsigned int
+    velocity_slot() const
+    {
+      return first_slot;
+    }
+
+    unsigned int
+    pressure_slot() const
+    {
+      return first_slot + dim;
+    }
+
+    unsigned int
+    porosity_slot() const
+    {
+      return first_slot + dim + 1;
+    }
+    /// @}
+
+    /**
+     * The water of new points: the porosity of their material, the
+     * pore pressure 'Initial pore pressure' at their position (scene
+     * frame, @p grid converts), the skeleton's velocity.
+     */
+    void
+    initialize_points(Particles::ParticleHandler<dim> &particles,
+                      const BackgroundGrid<dim>       &grid) const;
+
+    /**
+     * The fastest wave the explicit step must resolve among the saturated
+     * materials: the undrained P wave sqrt((M + K_w / n) / (rho_d + n
+     * rho_w)), the water's own sqrt(K_w / rho_w) (a permeable skeleton
+     * lets it run alone) and the skeleton's sqrt(M / rho_d).
+     */
+    double
+    max_wave_speed(const MaterialLibrary &materials) const;
+
+    /// The step's time step, FLIP share and gravity (mesh frame).
+    void
+    set_step(const double dt, const double flip, const Tensor<1, dim> &g)
+    {
+      time_step        = dt;
+      flip_fraction    = flip;
+      gravity          = g;
+    }
+
+    /**
+     * The water's and the skeleton's new nodal velocity with the drag
+     * implicit, at the nodes @p active_dofs (local elements): on return
+     * nodal.force holds the skeleton's force that gives its new velocity
+     * from the momentum it brought (the drag included), and the water's
+     * new velocity is in its own field. After map_phase() with this
+     * kernel.
+     */
+    void
+    couple(NodalFields &nodal, const std::vector<unsigned int> &active_dofs);
+
+    /// Hold the water's new velocity at the walls as the skeleton's
+    /// (impermeable walls).
+    void
+    constrain(const BoundaryConditions<dim> &boundary_conditions);
+
+    /// The skeleton's end-of-step nodal velocity, which update_point()
+    /// reads for the volume change.
+    void
+    set_skeleton_velocity(const NodalVector &velocity)
+    {
+      skeleton_velocity = &velocity;
+    }
+
+    /// @name PhaseKernel.
+    /// @{
+    typename PhaseKernel<dim>::Targets
+    grid_targets() override;
+
+    void
+    add_to_grid(const double                        *props,
+                const Q1ShapeFunctions<dim>         &sf,
+                typename PhaseKernel<dim>::Sums     &sums) const override;
+
+    typename PhaseKernel<dim>::Sources
+    grid_sources() override;
+
+    void
+    update_point(
+      double                                                          *props,
+      const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
+      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
+        &gradients) const override;
+    /// @}
+
+    /// @name The water's parameters.
+    /// @{
+    double
+    density() const
+    {
+      return water_density;
+    }
+
+    double
+    get_bulk_modulus() const
+    {
+      return bulk_modulus;
+    }
+
+    double
+    get_viscosity() const
+    {
+      return viscosity;
+    }
+    /// @}
+
+  private:
+    bool is_active = false;
+
+    double      water_density    = 1000;
+    double      bulk_modulus     = 2.2e9;
+    double      viscosity        = 1e-3;
+    std::string initial_pressure_expression = "0";
+    std::unique_ptr<FunctionParser<dim>> initial_pressure;
+
+    /// Per material: its porosity at the start (0: dry) and its
+    /// intrinsic permeability.
+    std::vector<double> material_porosity;
+    std::vector<double> material_permeability;
+
+    unsigned int first_slot = 0;
+
+    double         time_step     = 0;
+    double         flip_fraction = 0;
+    Tensor<1, dim> gravity;
+    const NodalVector *skeleton_velocity = nullptr;
+
+    /// The water's nodal fields (mass in each component's entry).
+    NodalVector mass, momentum, force, skeleton_pressure_force, drag;
+    /// Brought (p / m) and end-of-step velocity.
+    NodalVector velocity, velocity_new;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,79 @@
+#ifndef mpm_transfer_phase_kernel_h
+#define mpm_transfer_phase_kernel_h
+
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/tensor.h>
+
+#include <mpm/grid/nodal_vector.h>
+#include <mpm/grid/q1_shape_functions.h>
+
+#include <array>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  /**
+   * What a phase other than the solid skeleton (PoreWater) maps between its
+   * points and the grid, through the weights of the step
+   * (ParticleGridWeights::map_phase(), update_phase_points()): the passes
+   * loop over the entries of every weight function and the kernel says,
+   * per point and weight set, what it adds to its nodal fields and what it
+   * does with the nodal values interpolated back. The dry passes do not
+   * know it: a scene without a second phase pays nothing for it.
+   *
+   * The calls are virtual per entry: a two-phase step pays a call per
+   * point and pass, small beside its arithmetic.
+   */
+  template <int dim>
+  class PhaseKernel
+  {
+  public:
+    static constexpr unsigned int n_vertices =
+      GeometryInfo<dim>::vertices_per_cell;
+    using VertexValues = std::array<Tensor<1, dim>, n_vertices>;
+
+    /// Nodal fields a particle-to-grid pass of a phase may add to.
+    static constexpr unsigned int max_targets = 5;
+    /// Nodal fields a grid-to-particle pass of a phase may read.
+    static constexpr unsigned int max_sources = 3;
+
+    using Targets = std::array<NodalVector *, max_targets>;
+    using Sums    = std::array<VertexValues, max_targets>;
+    using Sources = std::array<const NodalVector *, max_sources>;
+
+    virtual ~PhaseKernel() = default;
+
+    /// The nodal fields the particle-to-grid pass adds to (nullptr:
+    /// unused); each is summed over the ranks afterwards.
+    virtual Targets
+    grid_targets() = 0;
+
+    /**
+     * Add the share of the point with properties @p props at its weights
+     * @p sf (values and gradients at the vertices of one cell) to the
+     * per-vertex @p sums of grid_targets().
+     */
+    virtual void
+    add_to_grid(const double                *props,
+                const Q1ShapeFunctions<dim> &sf,
+                Sums                        &sums) const = 0;
+
+    /// The nodal fields whose values and gradients update_point() reads.
+    virtual Sources
+    grid_sources() = 0;
+
+    /**
+     * Update the point with properties @p props from the @p values and
+     * @p gradients at it of grid_sources() (sum_i N_i u_i and
+     * sum_i u_i (x) grad N_i over all its weights).
+     */
+    virtual void
+    update_point(double                                          *props,
+                 const std::array<Tensor<1, dim>, max_sources> &values,
+                 const std::array<Tensor<2, dim>, max_sources> &gradients)
+      const = 0;
+  };
+} // namespace MPM
+
+#endif

@@ -1,0 +1,283 @@
+#include <deal.II/base/utilities.h>
+
+#include <mpm/base/function_input.h>
+#include <mpm/base/input_error.h>
+#include <mpm/boundary_conditions/boundary_conditions.h>
+#include <mpm/material_points/property_layout.h>
+#include <mpm/phases/pore_water.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace MPM
+{
+  template <int dim>
+  void
+  PoreWater<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Pore water");
+    prm.declare_entry("Density",
+                      "1000",
+                      Patterns::Double(0),
+                      "Density rho_w of the pore water in kg/m^3 (materials "
+                      "with 'Porosity' > 0; doc/pore_water.md).");
+    prm.declare_entry("Bulk modulus",
+                      "2.2e9",
+                      Patterns::Double(0),
+                      "Bulk modulus K_w of the pore water in Pa: the pore "
+                      "pressure rises by K_w / n times the volume of water "
+                      "a point gains per volume of pores. With the "
+                      "undrained P wave sqrt((M + K_w / n) / rho) it sets "
+                      "the time step.");
+    prm.declare_entry("Viscosity",
+                      "1e-3",
+                      Patterns::Double(0),
+                      "Dynamic viscosity mu of the pore water in Pa s; the "
+                      "drag per volume is n^2 mu / k (v_w - v_s).");
+    prm.declare_entry("Initial pore pressure",
+                      "0",
+                      Patterns::Anything(),
+                      "Pore pressure p in Pa (compression positive) of the "
+                      "points of saturated materials at the start, a "
+                      "function of the scene's coordinates x, y (and z), "
+                      "e.g. '1000 * 9.81 * (2 - y)' under a water table at "
+                      "y = 2 m. The materials' 'Initial stress' is their "
+                      "effective stress.");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Pore water");
+    water_density = prm.get_double("Density");
+    bulk_modulus  = prm.get_double("Bulk modulus");
+    viscosity     = prm.get_double("Viscosity");
+    check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
+                "Pore water: Density (" + prm.get("Density") +
+                  "), Bulk modulus (" + prm.get("Bulk modulus") +
+                  ") and Viscosity (" + prm.get("Viscosity") +
+                  ") must be > 0.");
+    initial_pressure_expression = prm.get("Initial pore pressure");
+    initial_pressure = std::make_unique<FunctionParser<dim>>(1);
+    parse_function_or_throw("Pore water/Initial pore pressure = '" +
+                              initial_pressure_expression + "'",
+                            [&]() {
+                              initial_pressure->initialize(
+                                dim == 2 ? "x,y" : "x,y,z",
+                                initial_pressure_expression,
+                                {{"_pi", numbers::PI}, {"_e", numbers::E}});
+                              initial_pressure->value(Point<dim>());
+                            });
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::initialize(const MaterialLibrary &materials,
+                             NodalFields           &nodal)
+  {
+    material_porosity.clear();
+    material_permeability.clear();
+    is_active = false;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      {
+        material_porosity.push_back(materials[m].porosity);
+        material_permeability.push_back(materials[m].permeability);
+        is_active = is_active || materials[m].porosity > 0;
+      }
+    if (!is_active)
+      return;
+    for (NodalVector *field :
+         {&mass, &momentum, &force, &skeleton_pressure_force, &drag})
+      nodal.add(*field, NodalFields::Ghosts::summed);
+    nodal.add(velocity, NodalFields::Ghosts::computed);
+    nodal.add(velocity_new, NodalFields::Ghosts::computed);
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  PoreWater<dim>::point_property_names() const
+  {
+    std::vector<std::string> names(dim, "water_velocity");
+    names.push_back("pore_pressure");
+    names.push_back("porosity");
+    return names;
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::initialize_points(Particles::ParticleHandler<dim> &particles,
+                                    const BackgroundGrid<dim> &grid) const
+  {
+    using Layout = PropertyLayout<dim>;
+    for (auto &particle : particles)
+      {
+        const ArrayView<double> props = particle.get_properties();
+        const unsigned int      material =
+          static_cast<unsigned int>(props[Layout::material_id]);
+        const double n = material_porosity[material];
+        props[porosity_slot()] = n;
+        props[pressure_slot()] =
+          n > 0 ? initial_pressure->value(
+                    grid.to_scene_frame(particle.get_location())) :
+                  0.;
+        for (unsigned int d = 0; d < dim; ++d)
+          props[velocity_slot() + d] = n > 0 ? props[Layout::velocity + d] : 0.;
+      }
+  }
+
+
+  template <int dim>
+  double
+  PoreWater<dim>::max_wave_speed(const MaterialLibrary &materials) const
+  {
+    double c = 0;
+    for (unsigned int m = 0; m < materials.size(); ++m)
+      {
+        const double n = materials[m].porosity;
+        if (n == 0)
+          continue;
+        const double M     = materials[m].model->p_wave_modulus();
+        const double rho_d = materials[m].density;
+        c = std::max({c,
+                      std::sqrt((M + bulk_modulus / n) /
+                                (rho_d + n * water_density)),
+                      std::sqrt(bulk_modulus / water_density),
+                      std::sqrt(M / rho_d)});
+      }
+    return c;
+  }
+
+
+  template <int dim>
+  typename PhaseKernel<dim>::Targets
+  PoreWater<dim>::grid_targets()
+  {
+    return {{&mass, &momentum, &force, &skeleton_pressure_force, &drag}};
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::add_to_grid(const double                    *props,
+                              const Q1ShapeFunctions<dim>     &sf,
+                              typename PhaseKernel<dim>::Sums &sums) const
+  {
+    using Layout   = PropertyLayout<dim>;
+    const double n = props[porosity_slot()];
+    if (n == 0)
+      return;
+    const unsigned int material =
+      static_cast<unsigned int>(props[Layout::material_id]);
+    const double         V   = props[Layout::volume];
+    const double         p   = props[pressure_slot()];
+    const double         m_w = n * water_density * V;
+    const Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
+    // Drag per unit relative velocity of the point's water.
+    const double Q = V * n * n * viscosity / material_permeability[material];
+    for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
+      {
+        const double N = sf.value[i];
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            sums[0][i][c] += N * m_w;
+            sums[4][i][c] += N * Q;
+          }
+        sums[1][i] += (N * m_w) * v_w;
+        sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
+        sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
+      }
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::couple(NodalFields                     &nodal,
+                         const std::vector<unsigned int> &active_dofs)
+  {
+    const double dt = time_step;
+    for (const unsigned int i : active_dofs)
+      {
+        const double m_w = mass.local_element(i);
+        const double m_s = nodal.mass.local_element(i);
+        if (m_w <= 0 || m_s <= 0)
+          {
+            velocity.local_element(i)     = 0;
+            velocity_new.local_element(i) = 0;
+            continue;
+          }
+        const double v_s = nodal.momentum.local_element(i) / m_s;
+        const double v_w = momentum.local_element(i) / m_w;
+        const double F_s = nodal.force.local_element(i) +
+                           skeleton_pressure_force.local_element(i);
+        const double F_w = force.local_element(i);
+        const double Q   = drag.local_element(i);
+        // [a + Q, -Q; -Q, b + Q] [v_s'; v_w'] = [a v_s + F_s; b v_w + F_w]
+        const double a   = m_s / dt;
+        const double b   = m_w / dt;
+        const double r_s = a * v_s + F_s;
+        const double r_w = b * v_w + F_w;
+        const double det = a * b + Q * (a + b);
+        const double v_s_new = ((b + Q) * r_s + Q * r_w) / det;
+        const double v_w_new = (Q * r_s + (a + Q) * r_w) / det;
+        nodal.force.local_element(i)  = a * (v_s_new - v_s);
+        velocity.local_element(i)     = v_w;
+        velocity_new.local_element(i) = v_w_new;
+      }
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::constrain(const BoundaryConditions<dim> &boundary_conditions)
+  {
+    boundary_conditions.project_velocity(velocity_new);
+  }
+
+
+  template <int dim>
+  typename PhaseKernel<dim>::Sources
+  PoreWater<dim>::grid_sources()
+  {
+    Assert(skeleton_velocity != nullptr, ExcInternalError());
+    return {{&velocity_new, &velocity, skeleton_velocity}};
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::update_point(
+    double                                                          *props,
+    const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
+    const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
+      &gradients) const
+  {
+    const double n = props[porosity_slot()];
+    if (n == 0)
+      return;
+    const double   dt  = time_step;
+    Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
+    v_w = flip_fraction * (v_w + values[0] - values[1]) +
+          (1 - flip_fraction) * values[0];
+    for (unsigned int d = 0; d < dim; ++d)
+      props[velocity_slot() + d] = v_w[d];
+    const double div_w = trace(gradients[0]);
+    const double div_s = trace(gradients[2]);
+    props[pressure_slot()] -=
+      dt * bulk_modulus / n * ((1 - n) * div_s + n * div_w);
+    // The pores change with the skeleton's volume; bounded away from 0
+    // and 1, where the formulation has no meaning.
+    props[porosity_slot()] =
+      std::clamp(n + dt * (1 - n) * div_s, 1e-3, 1 - 1e-3);
+  }
+
+
+  template class PoreWater<2>;
+  template class PoreWater<3>;
+} // namespace MPM
