@@ -496,7 +496,8 @@ namespace MPM
     const MaterialLibrary           &materials,
     const Tensor<1, dim>            &gravity,
     Particles::ParticleHandler<dim> &particle_handler,
-    const unsigned int               velocity_gradient_slot) const
+    const unsigned int               velocity_gradient_slot,
+    const InitialPoreWater<dim>     &pore_water) const
   {
     using Layout              = PropertyLayout<dim>;
     const MPI_Comm comm       = grid.triangulation.get_communicator();
@@ -568,8 +569,16 @@ namespace MPM
             SymmetricTensor<2, 3> stress;
             if (region.initial_stress == "geostatic")
               {
-                const double s_v = material.density * gravity[dim - 1] *
-                                   (surface - X[dim - 1]);
+                // A saturated material's effective stress: the mixture's
+                // weight less the pore pressure.
+                const bool   saturated = material.porosity > 0 &&
+                                       pore_water.pressure != nullptr;
+                const double rho =
+                  material.density +
+                  (saturated ? material.porosity * pore_water.density : 0.);
+                double s_v = rho * gravity[dim - 1] * (surface - X[dim - 1]);
+                if (saturated)
+                  s_v += pore_water.pressure(X);
                 for (unsigned int d = 0; d < 3; ++d)
                   stress[d][d] = (d == dim - 1) ? s_v : k0 * s_v;
               }

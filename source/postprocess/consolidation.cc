@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace MPM
@@ -147,19 +149,23 @@ namespace MPM
       void
       write_report(const Simulator<dim> &, std::ostream &report) override
       {
-        report << "Terzaghi consolidation (H = " << thickness
+        // One 'label: value' a line (scripts/convergence.py reads them).
+        report << "## consolidation: Terzaghi, H = " << thickness
                << " m, u0 = " << u0 << " Pa, c_v = " << std::setprecision(6)
-               << c_v << " m^2/s):\n"
-               << "  T        max|u-u_T|/u0  rms/u0      U        U(T)\n";
+               << c_v << " m^2/s; u = p - rho_w |g| (z_t - z), u_T the "
+                  "series at the step's T\n";
         for (const auto &r : rows)
-          report << "  " << std::fixed << std::setprecision(4) << r[0]
-                 << "   " << std::scientific << std::setprecision(3) << r[1]
-                 << "      " << r[2] << "   " << std::fixed
-                 << std::setprecision(4) << r[3] << "   " << r[4] << '\n'
-                 << std::defaultfloat;
-        report << std::setprecision(4)
-               << "  T at U = 0.5: " << crossing[0]
-               << " (series 0.1967); at U = 0.9: " << crossing[1]
+          {
+            const std::string at = "at T = " + format_factor(r[0]);
+            report << std::scientific << std::setprecision(3)
+                   << "max |u - u_T| / u0 " << at << ": " << r[1] << '\n'
+                   << "rms (u - u_T) / u0 " << at << ": " << r[2] << '\n'
+                   << std::fixed << std::setprecision(4) << "U " << at
+                   << ": " << r[3] << " (series " << r[4] << ")\n"
+                   << std::defaultfloat;
+          }
+        report << std::setprecision(4) << "T at U = 0.5: " << crossing[0]
+               << " (series 0.1967)\nT at U = 0.9: " << crossing[1]
                << " (series 0.8481)\n"
                << std::setprecision(6);
       }
@@ -172,6 +178,20 @@ namespace MPM
       }
 
     private:
+      /// The time factor of a row as the parameter gave it (the step's T
+      /// is a little past it).
+      std::string
+      format_factor(const double T) const
+      {
+        double closest = time_factors.empty() ? T : time_factors[0];
+        for (const double t : time_factors)
+          if (std::abs(t - T) < std::abs(closest - T))
+            closest = t;
+        std::ostringstream s;
+        s << closest;
+        return s.str();
+      }
+
       /// u(Z, T) of the series (enough terms for 1e-12 at T >= 1e-4).
       double
       excess_exact(const double Z, const double T) const

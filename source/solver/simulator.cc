@@ -101,7 +101,8 @@ namespace MPM
                                     particle_handler,
                                     transfer.apic() != nullptr ?
                                       transfer_slot :
-                                      numbers::invalid_unsigned_int))
+                                      numbers::invalid_unsigned_int,
+                                    pore_water.initial_state()))
         pcout << "Region '" << region.name << "': " << region.n_points
               << " material points, volume " << region.volume
               << (dim == 2 ? " m^2" : " m^3") << ", mass " << region.mass

@@ -12,6 +12,7 @@
 #include <mpm/material_points/release_area.h>
 #include <mpm/materials/material_library.h>
 
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -43,6 +44,19 @@ namespace MPM
    * region if its position lies inside it, so a region that does not
    * conform to the mesh is approximated to within a sub-cell.
    */
+  /**
+   * What the geostatic stress of a saturated material needs of the pore
+   * water (PoreWater::initial_state()): its density and the pore pressure
+   * at a point of the scene at the start (compression positive).
+   */
+  template <int dim>
+  struct InitialPoreWater
+  {
+    double                                    density = 0;
+    std::function<double(const Point<dim> &)> pressure;
+  };
+
+
   template <int dim>
   class PointGenerator
   {
@@ -73,6 +87,11 @@ namespace MPM
      * a body set spinning keeps its sub-cell motion from the first step).
      * Returns each region's number of points, volume and mass (the
      * released volume of a release area).
+     *
+     * A saturated material's geostatic stress is the effective one: the
+     * weight of the saturated mixture above, (rho_d + n rho_w) g depth,
+     * less the pore pressure @p pore_water says the point starts with
+     * (with the water table at the surface, the buoyant weight).
      */
     /// What generate() created for one region (global sums).
     struct RegionSummary
@@ -89,7 +108,8 @@ namespace MPM
              const Tensor<1, dim>           &gravity,
              Particles::ParticleHandler<dim> &particle_handler,
              const unsigned int velocity_gradient_slot =
-               numbers::invalid_unsigned_int) const;
+               numbers::invalid_unsigned_int,
+             const InitialPoreWater<dim> &pore_water = {}) const;
 
     /**
      * A region that reaches beyond the mesh through an open boundary: its

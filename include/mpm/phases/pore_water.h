@@ -7,6 +7,7 @@
 
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
+#include <mpm/material_points/point_generator.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/transfer/phase_kernel.h>
 
@@ -114,6 +115,21 @@ namespace MPM
     void
     initialize_points(Particles::ParticleHandler<dim> &particles,
                       const BackgroundGrid<dim>       &grid) const;
+
+    /**
+     * The water's density and 'Initial pore pressure', for the geostatic
+     * stress of saturated materials (PointGenerator::generate()); empty
+     * if no material is saturated.
+     */
+    InitialPoreWater<dim>
+    initial_state() const
+    {
+      if (!is_active)
+        return {};
+      return {water_density, [this](const Point<dim> &x) {
+                return initial_pressure->value(x);
+              }};
+    }
 
     /**
      * The fastest wave the explicit step must resolve among the saturated
