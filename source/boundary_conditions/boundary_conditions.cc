@@ -4,6 +4,10 @@
 #include <mpm/boundary_conditions/node_frames.h>
 #include <mpm/boundary_conditions/wall_friction.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
+#include <deal.II/fe/fe_values.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -97,6 +101,17 @@ namespace MPM
                           "(normal, tangential) components in the node frame; "
                           "the tangent is the outward normal turned by +90 "
                           "degrees.");
+        prm.declare_entry("Drainage",
+                          "impermeable",
+                          Patterns::Selection("impermeable|drained"),
+                          "For the pore water of saturated materials "
+                          "(doc/pore_water.md), a wall (fixed, slip, "
+                          "friction, velocity) is impermeable (the water's "
+                          "normal velocity is held as the skeleton's) or "
+                          "drained (the water passes: its velocity is free "
+                          "there and the pore pressure on the wall zero, "
+                          "as on a filter). Free and traction boundaries "
+                          "always drain.");
         prm.declare_entry("Traction",
                           dim == 2 ? "0, 0" : "0, 0, 0",
                           Patterns::Anything(),
@@ -167,6 +182,7 @@ namespace MPM
             s.local_velocity = parse_point<dim>(prm.get("Velocity"),
                                                  path + "Velocity");
           }
+        s.drained = prm.get("Drainage") == "drained";
         if (s.type == BoundaryType::traction)
           s.traction =
             parse_point<dim>(prm.get("Traction"), path + "Traction");
@@ -236,6 +252,149 @@ namespace MPM
     set_contact(merge(contact_before));
     wall_gap.setup(grid, specs, layout, nodes);
     tractions.setup(grid, specs, layout, periodic_nodes);
+    compute_frictional_wall_area(grid, layout, periodic_nodes);
+    // The pore water's walls: the same without the drained ones.
+    water_nodes.clear();
+    if (std::any_of(specs.begin(), specs.end(), [](const auto &s) {
+          return s.drained && is_wall(s.type);
+        }))
+      {
+        auto water_specs = specs;
+        for (auto &s : water_specs)
+          if (s.drained)
+            s.type = BoundaryType::free;
+        const auto water_frames = compute_node_frames(
+          grid, layout, water_specs, gravity_magnitude, periodic_nodes);
+        AffineConstraints<double> water_constraints;
+        make_wall_constraints(water_frames,
+                              grid.locally_relevant_dofs,
+                              water_constraints);
+        water_nodes =
+          make_projections(water_frames, water_constraints, layout);
+        has_drained_walls = true;
+        std::map<unsigned int, unsigned int> water_node_at;
+        for (unsigned int w = 0; w < water_nodes.size(); ++w)
+          water_node_at[water_nodes[w].local_dofs[0]] = w;
+        water_node_of_node.assign(nodes.size(), numbers::invalid_unsigned_int);
+        for (unsigned int k = 0; k < nodes.size(); ++k)
+          {
+            const auto w = water_node_at.find(nodes[k].local_dofs[0]);
+            if (w != water_node_at.end())
+              water_node_of_node[k] = w->second;
+          }
+      }
+    else
+      has_drained_walls = false;
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::compute_frictional_wall_area(
+    const BackgroundGrid<dim> &grid,
+    const NodalVector         &layout,
+    const PeriodicNodeGroups  *periodic_nodes)
+  {
+    wall_area.reinit(layout);
+    wall_area = 0;
+    if (std::none_of(specs.begin(), specs.end(), [](const auto &s) {
+          return s.type == BoundaryType::friction;
+        }))
+      return;
+    FEFaceValues<dim> face_values(grid.mapping,
+                                  grid.fe,
+                                  QGauss<dim - 1>(2),
+                                  update_values | update_JxW_values);
+    for (const auto &cell : grid.dof_handler.active_cell_iterators())
+      {
+        if (!cell->is_locally_owned())
+          continue;
+        for (const unsigned int f : cell->face_indices())
+          {
+            if (!cell->face(f)->at_boundary())
+              continue;
+            const types::boundary_id id = cell->face(f)->boundary_id();
+            if (std::none_of(specs.begin(), specs.end(), [id](const auto &s) {
+                  return s.type == BoundaryType::friction &&
+                         std::find(s.ids.begin(), s.ids.end(), id) !=
+                           s.ids.end();
+                }))
+              continue;
+            face_values.reinit(cell, f);
+            for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
+              {
+                const unsigned int cell_vertex =
+                  GeometryInfo<dim>::face_to_cell_vertices(f, v);
+                const unsigned int i =
+                  grid.fe.component_to_system_index(0, cell_vertex);
+                double area = 0;
+                for (unsigned int q = 0; q < face_values.n_quadrature_points;
+                     ++q)
+                  area += face_values.shape_value(i, q) * face_values.JxW(q);
+                for (unsigned int c = 0; c < dim; ++c)
+                  wall_area(cell->vertex_dof_index(cell_vertex, c)) += area;
+              }
+          }
+      }
+    wall_area.compress(VectorOperation::add);
+    wall_area.update_ghost_values();
+    if (periodic_nodes != nullptr)
+      periodic_nodes->sum(wall_area);
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::drain_at_walls(
+    const NodalVector &velocity_against_wall,
+    NodalVector       &velocity) const
+  {
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      {
+        const auto &node = nodes[k];
+        // A frictional node the last update did not hold: the wall held
+        // nothing there.
+        if (node.frictional && contact_state[k] == ContactState::free)
+          continue;
+        const unsigned int w = water_node_of_node[k];
+        const Tensor<2, dim> P_w = w == numbers::invalid_unsigned_int ?
+                                     unit_symmetric_tensor<dim>() :
+                                     water_nodes[w].projector;
+        Tensor<1, dim> v, v_wall;
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            v[c]      = velocity.local_element(node.local_dofs[c]);
+            v_wall[c] = velocity_against_wall.local_element(node.local_dofs[c]);
+          }
+        v += (P_w - node.projector) * (v_wall - v);
+        for (unsigned int c = 0; c < dim; ++c)
+          velocity.local_element(node.local_dofs[c]) = v[c];
+      }
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::project_water_velocity(NodalVector &velocity) const
+  {
+    if (!has_drained_walls)
+      {
+        project_velocity(velocity);
+        return;
+      }
+    // As project_velocity() by velocity (a frictional wall holds the
+    // water moving into it), on the impermeable walls alone.
+    for (const auto &node : water_nodes)
+      {
+        Tensor<1, dim> v;
+        for (unsigned int c = 0; c < dim; ++c)
+          v[c] = velocity.local_element(node.local_dofs[c]);
+        if (node.frictional && v * node.normal <= 0)
+          continue;
+        v = node.projector * v + node.offset;
+        for (unsigned int c = 0; c < dim; ++c)
+          velocity.local_element(node.local_dofs[c]) = v[c];
+      }
   }
 
 
@@ -337,7 +496,8 @@ namespace MPM
   BoundaryConditions<dim>::apply_friction(const NodalVector &mass,
                                           const NodalVector &velocity,
                                           NodalVector       &acceleration,
-                                          const double       dt)
+                                          const double       dt,
+                                          const PoreWaterAtNodes *water)
   {
     for (unsigned int k = 0; k < nodes.size(); ++k)
       {
@@ -356,10 +516,45 @@ namespace MPM
             v[c] = velocity.local_element(node.local_dofs[c]);
             a[c] = acceleration.local_element(node.local_dofs[c]);
           }
-        bool sticks = false;
-        a           = node.frictional ?
-                        WallFriction::frictional_acceleration(
-                          v, a, node.normal, *node.law, node.geometry, dt, &sticks, held) :
+        bool         sticks = false;
+        // With pore water: the effective normal force is the mixture's
+        // reaction, R_s + R_w, less p A. Friction takes it from the
+        // skeleton's reaction R_s by the relief p A - R_w (per unit
+        // skeleton mass): the drag of the nodal update has shared the
+        // phases' pushes on the wall, their sum it has not.
+        double relief = 0;
+        if (water != nullptr && node.frictional)
+          {
+            const unsigned int i0  = node.local_dofs[0];
+            const double       m_w = water->mass.local_element(i0);
+            const double       n_i = water->porosity.local_element(i0);
+            Tensor<1, dim>     v_w, v_w_new, F_w;
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const unsigned int i = node.local_dofs[c];
+                v_w[c]     = water->brought_velocity.local_element(i);
+                v_w_new[c] = water->new_velocity.local_element(i);
+                F_w[c]     = water->force.local_element(i);
+              }
+            const double own_push =
+              std::max(m_w * (v_w * node.normal) / dt + F_w * node.normal,
+                       0.);
+            const double reaction_after_drag =
+              m_w * std::max(v_w_new * node.normal, 0.) / dt;
+            if (n_i > 0)
+              relief = (own_push / n_i - reaction_after_drag) /
+                       mass.local_element(i0);
+          }
+        a = node.frictional ?
+              WallFriction::frictional_acceleration(v,
+                                                    a,
+                                                    node.normal,
+                                                    *node.law,
+                                                    node.geometry,
+                                                    dt,
+                                                    &sticks,
+                                                    held,
+                                                    relief) :
                         WallFriction::edge_frictional_acceleration(v,
                                                                    a,
                                                                    node.edge_normals,

@@ -15,7 +15,8 @@ namespace MPM
                             const WallNodeGeometry &geometry,
                             const double            dt,
                             bool *const             sticks,
-                            const bool              held)
+                            const bool              held,
+                            const double            relief)
     {
       if (sticks != nullptr)
         *sticks = false;
@@ -51,7 +52,10 @@ namespace MPM
       const Tensor<1, dim> v_t       = v - v_n * n;
       const Tensor<1, dim> v_t_trial = v_t + dt * (a - a_n * n);
       const double         speed     = v_t_trial.norm();
-      const double         capacity  = law.static_capacity(reaction, dt);
+      // The rate-independent resistance takes the effective normal
+      // reaction: the wall's push less what the pore water carries.
+      const double capacity =
+        law.static_capacity(std::max(reaction - relief, 0.), dt);
       Tensor<1, dim>       v_t_new =
         speed <= capacity ? Tensor<1, dim>() :
                             (1. - capacity / speed) * v_t_trial;
@@ -133,7 +137,8 @@ namespace MPM
                             const WallNodeGeometry &,
                             const double,
                             bool *const,
-                            const bool);
+                            const bool,
+                            const double);
     template Tensor<1, 3>
     frictional_acceleration(const Tensor<1, 3> &,
                             const Tensor<1, 3> &,
@@ -142,7 +147,8 @@ namespace MPM
                             const WallNodeGeometry &,
                             const double,
                             bool *const,
-                            const bool);
+                            const bool,
+                            const double);
     template Tensor<1, 2>
     edge_frictional_acceleration(const Tensor<1, 2> &,
                                  const Tensor<1, 2> &,

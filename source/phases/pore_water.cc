@@ -34,6 +34,15 @@ namespace MPM
                       Patterns::Double(0),
                       "Dynamic viscosity mu of the pore water in Pa s; the "
                       "drag per volume is n^2 mu / k (v_w - v_s).");
+    prm.declare_entry("Permeability law",
+                      "constant",
+                      Patterns::Selection("constant|kozeny-carman"),
+                      "How a point's permeability follows its porosity n: "
+                      "'constant', the material's 'Permeability' k0; "
+                      "'kozeny-carman', k0 (n^3 / (1 - n)^2) / (n0^3 / "
+                      "(1 - n0)^2) with n0 the material's 'Porosity' (a "
+                      "compacting skeleton drains more slowly, a dilating "
+                      "one faster).");
     prm.declare_entry("Initial pore pressure",
                       "0",
                       Patterns::Anything(),
@@ -55,6 +64,7 @@ namespace MPM
     water_density = prm.get_double("Density");
     bulk_modulus  = prm.get_double("Bulk modulus");
     viscosity     = prm.get_double("Viscosity");
+    kozeny_carman = prm.get("Permeability law") == "kozeny-carman";
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -91,11 +101,17 @@ namespace MPM
       }
     if (!is_active)
       return;
-    for (NodalVector *field :
-         {&mass, &momentum, &force, &skeleton_pressure_force, &drag})
+    for (NodalVector *field : {&mass,
+                               &momentum,
+                               &force,
+                               &skeleton_pressure_force,
+                               &drag,
+                               &volume_sums})
       nodal.add(*field, NodalFields::Ghosts::summed);
+    nodal.add(nodal_porosity, NodalFields::Ghosts::computed);
     nodal.add(velocity, NodalFields::Ghosts::computed);
     nodal.add(velocity_new, NodalFields::Ghosts::computed);
+    nodal.add(velocity_against_held_skeleton, NodalFields::Ghosts::computed);
   }
 
 
@@ -159,7 +175,12 @@ namespace MPM
   typename PhaseKernel<dim>::Targets
   PoreWater<dim>::grid_targets()
   {
-    return {{&mass, &momentum, &force, &skeleton_pressure_force, &drag}};
+    return {{&mass,
+             &momentum,
+             &force,
+             &skeleton_pressure_force,
+             &drag,
+             &volume_sums}};
   }
 
 
@@ -180,7 +201,14 @@ namespace MPM
     const double         m_w = n * water_density * V;
     const Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
     // Drag per unit relative velocity of the point's water.
-    const double Q = V * n * n * viscosity / material_permeability[material];
+    double k = material_permeability[material];
+    if (kozeny_carman)
+      {
+        const double n0 = material_porosity[material];
+        k *= (n * n * n / ((1 - n) * (1 - n))) /
+             (n0 * n0 * n0 / ((1 - n0) * (1 - n0)));
+      }
+    const double Q = V * n * n * viscosity / k;
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       {
         const double N = sf.value[i];
@@ -193,6 +221,10 @@ namespace MPM
         sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
         sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
       }
+    // The saturated volume at the nodes, in every component.
+    for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
+      for (unsigned int c = 0; c < dim; ++c)
+        sums[5][i][c] += sf.value[i] * V;
   }
 
 
@@ -206,6 +238,9 @@ namespace MPM
       {
         const double m_w = mass.local_element(i);
         const double m_s = nodal.mass.local_element(i);
+        const double V_i = volume_sums.local_element(i);
+        nodal_porosity.local_element(i) =
+          V_i > 0 ? m_w / (water_density * V_i) : 0.;
         if (m_w <= 0 || m_s <= 0)
           {
             velocity.local_element(i)     = 0;
@@ -235,9 +270,35 @@ namespace MPM
 
   template <int dim>
   void
-  PoreWater<dim>::constrain(const BoundaryConditions<dim> &boundary_conditions)
+  PoreWater<dim>::finish_velocity(
+    const NodalFields               &nodal,
+    const std::vector<unsigned int> &active_dofs,
+    const BoundaryConditions<dim>   &boundary_conditions)
   {
-    boundary_conditions.project_velocity(velocity_new);
+    if (boundary_conditions.has_drained_wall())
+      {
+        const double dt = time_step;
+        for (const unsigned int i : active_dofs)
+          {
+            const double m_w = mass.local_element(i);
+            if (m_w <= 0 || nodal.mass.local_element(i) <= 0)
+              {
+                velocity_against_held_skeleton.local_element(i) =
+                  velocity_new.local_element(i);
+                continue;
+              }
+            // m_w (v_w' - v_w) / dt = F_w - Q (v_w' - v_s')
+            const double b = m_w / dt;
+            const double Q = drag.local_element(i);
+            velocity_against_held_skeleton.local_element(i) =
+              (b * velocity.local_element(i) + force.local_element(i) +
+               Q * nodal.velocity_new.local_element(i)) /
+              (b + Q);
+          }
+        boundary_conditions.drain_at_walls(velocity_against_held_skeleton,
+                                           velocity_new);
+      }
+    boundary_conditions.project_water_velocity(velocity_new);
   }
 
 

@@ -25,7 +25,9 @@ namespace MPM
      *
      *   u(Z, T) = u0 sum_m (2 / M) sin(M Z) exp(-M^2 T),  M = pi (2m+1) / 2,
      *
-     * with Z = (z_t - z) / H the depth over the drainage length and
+     * with Z = (z_t - z) / H the depth over the drainage length (with a
+     * drained base 2 H below the top too, the distance to the nearer
+     * drained face over H) and
      * T = c_v t / H^2 the time factor; the degree of consolidation is
      * U(T) = 1 - sum_m (2 / M^2) exp(-M^2 T) (U = 0.5 at T = 0.197, 0.9 at
      * T = 0.848). For a linear elastic skeleton of P-wave (oedometric)
@@ -56,7 +58,14 @@ namespace MPM
                           "1",
                           Patterns::Double(0),
                           "H in m: the drainage length, down to the "
-                          "impermeable base.");
+                          "impermeable base (Drainage = top), or half the "
+                          "layer (Drainage = top and base).");
+        prm.declare_entry("Drainage",
+                          "top",
+                          Patterns::Selection("top|top and base"),
+                          "Where the layer drains: at its top only, or at "
+                          "its top and its base (2 H below the top; the "
+                          "base a 'Drainage = drained' wall).");
         prm.declare_entry("Initial excess pore pressure",
                           "1e4",
                           Patterns::Double(0),
@@ -80,6 +89,7 @@ namespace MPM
       {
         top       = prm.get_double("Drained surface elevation");
         thickness = prm.get_double("Layer thickness");
+        both_ends = prm.get("Drainage") == "top and base";
         u0        = prm.get_double("Initial excess pore pressure");
         c_v       = prm.get_double("Coefficient of consolidation");
         check_input(thickness > 0 && u0 > 0,
@@ -249,7 +259,10 @@ namespace MPM
             sums[1] += V;
             if (full)
               {
-                const double Z = std::clamp((top - z) / thickness, 0., 1.);
+                const double depth =
+                  both_ends ? std::min(top - z, z - (top - 2 * thickness)) :
+                              top - z;
+                const double Z = std::clamp(depth / thickness, 0., 1.);
                 const double d = u - excess_exact(Z, T);
                 sums[2]        = std::max(sums[2], std::abs(d));
                 sums[3] += V * d * d;
@@ -267,6 +280,7 @@ namespace MPM
 
       double              top       = 1;
       double              thickness = 1;
+      bool                both_ends = false;
       double              u0        = 1e4;
       double              c_v       = 0;
       std::vector<double> time_factors;

@@ -63,6 +63,16 @@ namespace MPM
                           "reference of a rate-dependent basal law (Voellmy's "
                           "drag acts on the block's base, its weight grows "
                           "with its thickness).");
+        prm.declare_entry("Buoyant block",
+                          "false",
+                          Patterns::Bool(),
+                          "The block is saturated (pore water), its water "
+                          "table at its top and the water seeping parallel "
+                          "to the bed: the bed's Coulomb friction acts on "
+                          "the effective normal stress, the buoyant weight, "
+                          "a = g (sin theta - f mu cos theta) with f = "
+                          "(rho_sat - rho_w) / rho_sat of the block's "
+                          "material (doc/pore_water.md). Coulomb beds only.");
       }
 
       void
@@ -72,6 +82,7 @@ namespace MPM
         bed        = prm.get("Bed boundary");
         error_from = prm.get_double("Error from time");
         thickness  = prm.get_double("Block thickness");
+        buoyant    = prm.get_bool("Buoyant block");
       }
 
       void
@@ -80,7 +91,9 @@ namespace MPM
         law = bed_law(simulator);
         const double mu = law->friction_coefficient();
         g               = simulator.get_time_stepping().gravity.norm();
-        acceleration    = std::max(0., g * (std::sin(theta) - mu * std::cos(theta)));
+        set_reference_gravity(simulator);
+        acceleration =
+          std::max(0., g * (std::sin(theta) - f * mu * std::cos(theta)));
         // The dip direction: gravity's component along the bed, whose
         // normal is the mean of the frictional nodes' normals (the bed is
         // the scene's only frictional boundary and a plane).
@@ -102,7 +115,10 @@ namespace MPM
         std::ostringstream header;
         header << "## sliding block: theta = " << theta * 180 / M_PI
                       << " deg, mu = " << mu
-                      << ", a = g (sin theta - mu cos theta) = "
+                      << (buoyant ? ", buoyant: f = " : "")
+                      << (buoyant ? std::to_string(f) : std::string())
+                      << (buoyant ? ", a = g (sin theta - f mu cos theta) = " :
+                                    ", a = g (sin theta - mu cos theta) = ")
                       << acceleration << " m/s^2"
                       << (acceleration == 0 ? " (sticks)" : "") << '\n';
         if (law->rate_dependent())
@@ -123,9 +139,15 @@ namespace MPM
         const double d        = (s.centre_of_mass - x0).norm();
         // A resumed run does not call initialize().
         if (law == nullptr)
-          law = bed_law(simulator);
+          {
+            law = bed_law(simulator);
+            set_reference_gravity(simulator);
+          }
+        // A buoyant block: Coulomb's law on the buoyant weight is that of
+        // a dry block under a gravity g' whose normal part is f times
+        // smaller, g' (sin theta', cos theta') = g (sin theta, f cos theta).
         const auto [v_exact, d_exact] =
-          law->rigid_block_motion(t, g, theta, thickness);
+          law->rigid_block_motion(t, g_reference, theta_reference, thickness);
         const double v_error  = v_exact > 0 ? (v - v_exact) / v_exact : v;
         const double d_error  = d_exact > 0 ? (d - d_exact) / d_exact : d;
         if (t >= error_from * (1 - 1e-12))
@@ -208,6 +230,44 @@ namespace MPM
       }
 
     private:
+      /// f and the reference block's gravity and slope (theta and g for
+      /// a dry block).
+      void
+      set_reference_gravity(const Simulator<dim> &simulator)
+      {
+        f = 1;
+        if (buoyant)
+          {
+            check_input(!law->rate_dependent(),
+                        "Postprocess/sliding block/Buoyant block = true "
+                        "needs a Coulomb bed.");
+            const auto &water = simulator.get_pore_water();
+            check_input(water.active(),
+                        "Postprocess/sliding block/Buoyant block = true "
+                        "needs a saturated material (Porosity > 0).");
+            const auto &materials = simulator.get_materials();
+            for (unsigned int m = 0; m < materials.size(); ++m)
+              if (materials[m].porosity > 0)
+                {
+                  const double rho_sat =
+                    materials[m].density +
+                    materials[m].porosity * water.density();
+                  f = (rho_sat - water.density()) / rho_sat;
+                  break;
+                }
+          }
+        // A dry block's reference is its own theta and g, bit for bit.
+        theta_reference =
+          buoyant ? std::atan2(std::sin(theta), f * std::cos(theta)) : theta;
+        g_reference =
+          buoyant ? g * std::hypot(std::sin(theta), f * std::cos(theta)) : g;
+      }
+
+      bool   buoyant         = false;
+      double f               = 1;
+      double theta_reference = 0;
+      double g_reference     = 0;
+
       /// The bed's basal law; a bed that is not frictional slides without
       /// friction.
       const BasalLaw<dim> *

@@ -74,17 +74,26 @@ namespace MPM
     for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) = brought_velocity(i);
     });
-    boundary_conditions.apply_friction(nodal.mass,
-                                       nodal.velocity_new,
-                                       nodal.acceleration,
-                                       dt);
+    if (pore_water.active())
+      {
+        const auto water = pore_water.at_nodes();
+        boundary_conditions.apply_friction(
+          nodal.mass, nodal.velocity_new, nodal.acceleration, dt, &water);
+      }
+    else
+      boundary_conditions.apply_friction(nodal.mass,
+                                         nodal.velocity_new,
+                                         nodal.acceleration,
+                                         dt);
     for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) +=
       dt * nodal.acceleration.local_element(i);
     });
     boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
     if (pore_water.active())
-      pore_water.constrain(boundary_conditions);
+      pore_water.finish_velocity(nodal,
+                                 weights->active_dofs(),
+                                 boundary_conditions);
     // The acceleration consistent with the constrained velocity change
     // from u, so that the FLIP update of the points respects the
     // constraints too.

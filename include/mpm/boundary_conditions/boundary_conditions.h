@@ -158,6 +158,32 @@ namespace MPM
     project_velocity(NodalVector  &velocity,
                      const Contact contact = Contact::by_velocity) const;
 
+    /**
+     * The walls' hold on the pore water's velocity (PoreWater): as
+     * project_velocity() (Contact::by_velocity) on the impermeable walls;
+     * a 'Drainage = drained' wall lets the water through.
+     */
+    void
+    project_water_velocity(NodalVector &velocity) const;
+
+    /// Whether a wall is 'Drainage = drained'.
+    bool
+    has_drained_wall() const
+    {
+      return has_drained_walls;
+    }
+
+    /**
+     * At the nodes where the last nodal update held the skeleton on a
+     * wall that lets the water through: in the directions held for the
+     * skeleton and free for the water, P_w - P_s (the water's walls being
+     * a subset of the skeleton's), replace @p velocity by
+     * @p velocity_against_wall (PoreWater::finish_velocity()).
+     */
+    void
+    drain_at_walls(const NodalVector &velocity_against_wall,
+                   NodalVector       &velocity) const;
+
     /// Whether find_contact() measures anything ('Wall contact = gap'
     /// and a frictional wall).
     bool
@@ -223,13 +249,49 @@ namespace MPM
      * The basal laws of the frictional walls on the nodal acceleration, in
      * each frictional node's frame (WallFriction), given the velocity at
      * the start of the step (already projected) and the step dt. Nodes
-     * with zero mass are skipped.
+     * with zero mass are skipped. With pore water (@p water), the Coulomb
+     * part acts on the effective normal force (Terzaghi): the mixture's
+     * reaction less p A, the pore pressure on the node's wall area. The
+     * mixture's reaction is the skeleton's plus the water's after the
+     * drag, m_w v_w'.n / dt (the drag shares the phases' pushes on the
+     * wall, their sum it does not change). p A is the water's own push
+     * without the drag, R_w0 = m_w v_w.n / dt + F_w.n, which the water's
+     * momentum balance makes n_i p A: p A = R_w0 / n_i, the pressure on
+     * the wall itself, not the nodal average of the points' pressures
+     * (half a cell above it). Edge nodes (3D) take the skeleton's reaction.
      */
+    /**
+     * The pore water at the nodes, for friction in effective stress: its
+     * nodal porosity n_i, mass, the velocity it brought, its force (its
+     * own pressure and weight, without the drag) and its new velocity
+     * (with the drag) before the walls hold it.
+     */
+    struct PoreWaterAtNodes
+    {
+      const NodalVector &porosity;
+      const NodalVector &mass;
+      const NodalVector &brought_velocity;
+      const NodalVector &force;
+      const NodalVector &new_velocity;
+    };
+
     void
-    apply_friction(const NodalVector &mass,
-                   const NodalVector &velocity,
-                   NodalVector       &acceleration,
-                   const double       dt);
+    apply_friction(const NodalVector      &mass,
+                   const NodalVector      &velocity,
+                   NodalVector            &acceleration,
+                   const double            dt,
+                   const PoreWaterAtNodes *water = nullptr);
+
+    /**
+     * Each frictional wall node's share of its walls' area, A_i =
+     * int_wall N_i dA (zero elsewhere): what turns a pressure on the wall
+     * into a nodal force.
+     */
+    const NodalVector &
+    frictional_wall_area() const
+    {
+      return wall_area;
+    }
 
     /**
      * Add the forces of the boundaries' tractions ('Type = traction') to
@@ -299,6 +361,12 @@ namespace MPM
     does_work() const;
 
   private:
+    /// frictional_wall_area() on the mesh of @p grid.
+    void
+    compute_frictional_wall_area(const BackgroundGrid<dim> &grid,
+                                 const NodalVector         &layout,
+                                 const PeriodicNodeGroups  *periodic_nodes);
+
     std::vector<BoundarySpec<dim>> specs;
     double                         gravity_magnitude = 0;
     AffineConstraints<double>    normal_constraints;
@@ -315,6 +383,15 @@ namespace MPM
     WallGap<dim> wall_gap;
     /// The loads of the boundaries of Type = traction.
     SurfaceTractions<dim> tractions;
+    /// Whether a wall is 'Drainage = drained', and then the projections
+    /// of the pore water's walls (the impermeable ones).
+    bool                         has_drained_walls = false;
+    std::vector<ConstrainedNode> water_nodes;
+    /// For each node of nodes: its index in water_nodes, or
+    /// numbers::invalid_unsigned_int (the water is free there).
+    std::vector<unsigned int> water_node_of_node;
+    /// frictional_wall_area().
+    NodalVector wall_area;
   };
 } // namespace MPM
 

@@ -59,6 +59,9 @@ namespace MPM
     Tensor<1, dim>                  local_velocity;
     /// Force per area (Pa) for Type = traction, in the scene's frame.
     Tensor<1, dim>                  traction;
+    /// 'Drainage = drained': pore water passes through this wall (its
+    /// normal velocity is free there, the pore pressure zero).
+    bool                            drained = false;
   };
 } // namespace MPM
 

@@ -42,6 +42,10 @@ namespace MPM
      * be lost at every flicker (measured: 2.5 % of a sliding block's drag
      * impulse). Coulomb's part is not affected: the normal impulse a
      * flicker misses is taken up by the next steps' reactions.
+     *
+     * With pore water, @p relief (per unit mass) is what r holds beyond
+     * the effective normal stress (BoundaryConditions::apply_friction()):
+     * the rate-independent resistance takes max(r - relief, 0).
      */
     template <int dim>
     Tensor<1, dim>
@@ -52,7 +56,8 @@ namespace MPM
                             const WallNodeGeometry &geometry,
                             const double            dt,
                             bool *const             sticks = nullptr,
-                            const bool              held   = false);
+                            const bool              held   = false,
+                            const double            relief = 0);
 
     /**
      * The same at a 3D edge node (two walls, one free direction): the

@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/particles/particle_handler.h>
 
+#include <mpm/boundary_conditions/boundary_conditions.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/material_points/point_generator.h>
@@ -19,8 +20,6 @@ namespace MPM
 {
   using namespace dealii;
 
-  template <int dim>
-  class BoundaryConditions;
 
   /**
    * The water in the pores of saturated materials ('Materials/NAME/
@@ -160,10 +159,36 @@ namespace MPM
     void
     couple(NodalFields &nodal, const std::vector<unsigned int> &active_dofs);
 
-    /// Hold the water's new velocity at the walls as the skeleton's
-    /// (impermeable walls).
+    /**
+     * The water at the nodes after couple() and before constrain(): its
+     * nodal porosity m_w / (rho_w sum N V), mass, brought velocity, force
+     * and new velocity. A frictional wall's Coulomb resistance acts on the
+     * effective normal force with them (BoundaryConditions::
+     * apply_friction()).
+     */
+    typename BoundaryConditions<dim>::PoreWaterAtNodes
+    at_nodes() const
+    {
+      return {nodal_porosity, mass, velocity, force, velocity_new};
+    }
+
+    /**
+     * The water's new velocity at the walls, at the nodes @p active_dofs:
+     * at a drained wall, in the directions the wall holds the skeleton
+     * but not the water, from the water's momentum balance with the drag
+     * against the skeleton as the wall holds it (nodal.velocity_new), not
+     * against the skeleton couple() let move with the water into the wall
+     * (that drained a layer's base to a suction of the full load); then
+     * held by the impermeable walls. Elsewhere couple()'s solution stays:
+     * friction's impulse on the skeleton reaches the water through the
+     * next step's drag (recomputing the water against the skeleton after
+     * friction would take momentum from the water that no force gives
+     * back, measured: a saturated layer sliding on its bed 40 % slower).
+     */
     void
-    constrain(const BoundaryConditions<dim> &boundary_conditions);
+    finish_velocity(const NodalFields               &nodal,
+                    const std::vector<unsigned int> &active_dofs,
+                    const BoundaryConditions<dim>   &boundary_conditions);
 
     /// The skeleton's end-of-step nodal velocity, which update_point()
     /// reads for the volume change.
@@ -221,6 +246,8 @@ namespace MPM
     double      water_density    = 1000;
     double      bulk_modulus     = 2.2e9;
     double      viscosity        = 1e-3;
+    /// 'Permeability law = kozeny-carman'.
+    bool        kozeny_carman    = false;
     std::string initial_pressure_expression = "0";
     std::unique_ptr<FunctionParser<dim>> initial_pressure;
 
@@ -238,8 +265,14 @@ namespace MPM
 
     /// The water's nodal fields (mass in each component's entry).
     NodalVector mass, momentum, force, skeleton_pressure_force, drag;
+    /// sum N V over the saturated points, and the nodal porosity
+    /// m_w / (rho_w sum N V) (at_nodes()), in every component.
+    NodalVector volume_sums, nodal_porosity;
     /// Brought (p / m) and end-of-step velocity.
     NodalVector velocity, velocity_new;
+    /// The water's new velocity by its balance against the skeleton's
+    /// final velocity (finish_velocity(), drained walls only).
+    NodalVector velocity_against_held_skeleton;
   };
 } // namespace MPM
 
