@@ -146,6 +146,8 @@ namespace MPM
   {
     using Layout = PropertyLayout<dim>;
     GlobalStatistics<dim> s;
+    // The pore water's mass, for the periodic correction below.
+    double water_mass = 0;
     s.time      = time;
     s.time_step = time_step;
     s.step      = step;
@@ -164,6 +166,9 @@ namespace MPM
         s.mean_speed += v.norm();
         s.max_speed = std::max(s.max_speed, v.norm());
         s.centre_of_mass += m * point.get_location();
+        if (pore_water.active())
+          water_mass += props[pore_water.porosity_slot()] *
+                        pore_water.density() * props[Layout::volume];
       }
     s.n_points = particle_handler.n_global_particles();
     s.mass     = Utilities::MPI::sum(s.mass, mpi_communicator);
@@ -182,7 +187,15 @@ namespace MPM
     if (!grid.periodic_boundaries.empty())
       {
         const Tensor<1, dim> shift = wrapped_mass_shift();
-        s.gravitational_potential_energy += time_stepping.gravity * shift;
+        // The shifts are the skeleton's (PointRelocation); the water
+        // wraps with it, taken in the ratio of the two masses now (exact
+        // for a uniform saturation).
+        const double water_share =
+          pore_water.active() && s.mass > 0 ?
+            Utilities::MPI::sum(water_mass, mpi_communicator) / s.mass :
+            0.;
+        s.gravitational_potential_energy +=
+          (1 + water_share) * (time_stepping.gravity * shift);
         unwrapped_centre_shift = shift;
       }
     s.removed_energy = lost_points.totals(mpi_communicator).energy;
@@ -218,11 +231,27 @@ namespace MPM
     const double      m      = props[Layout::mass];
     const Material   &material =
       materials[static_cast<unsigned int>(props[Layout::material_id])];
-    return {{0.5 * m * read_vector<dim>(&props[Layout::velocity]).norm_square(),
-             props[Layout::volume] *
-               material.model->strain_energy_density(
-                 read_symmetric_tensor(&props[Layout::stress])),
-             -m * (time_stepping.gravity * x)}};
+    std::array<double, 3> energy{
+      {0.5 * m * read_vector<dim>(&props[Layout::velocity]).norm_square(),
+       props[Layout::volume] *
+         material.model->strain_energy_density(
+           read_symmetric_tensor(&props[Layout::stress])),
+       -m * (time_stepping.gravity * x)}};
+    if (pore_water.active() && props[pore_water.porosity_slot()] > 0)
+      {
+        // The point's water, n rho_w V: its motion, its compression
+        // (n V p^2 / (2 K_w)) and its weight.
+        const double n   = props[pore_water.porosity_slot()];
+        const double V   = props[Layout::volume];
+        const double m_w = n * pore_water.density() * V;
+        const double p   = props[pore_water.pressure_slot()];
+        energy[0] +=
+          0.5 * m_w *
+          read_vector<dim>(&props[pore_water.velocity_slot()]).norm_square();
+        energy[1] += n * V * p * p / (2 * pore_water.get_bulk_modulus());
+        energy[2] += -m_w * (time_stepping.gravity * x);
+      }
+    return energy;
   }
 
 

@@ -188,7 +188,10 @@ namespace MPM
     /**
      * Kinetic, strain and gravitational potential energy of the point with
      * properties @p props at @p x: the terms of compute_statistics()'s
-     * sums, and what a removed point takes away.
+     * sums, and what a removed point takes away. A saturated point's
+     * water is in them (its kinetic energy, the energy of its compression
+     * and its weight's potential); the drag's dissipation and the water
+     * that drained out of the points are not.
      */
     std::array<double, 3>
     energy_of_point(const double *props, const Point<dim> &x) const;
