@@ -1,0 +1,94 @@
+#include <deal.II/base/mpi.h>
+
+#include <mpm/material_points/property_layout.h>
+#include <mpm/postprocess/postprocessor.h>
+#include <mpm/solver/simulator.h>
+
+#include <algorithm>
+#include <array>
+#include <iomanip>
+#include <limits>
+
+namespace MPM
+{
+  namespace Postprocessors
+  {
+    /**
+     * The pore pressure and the effective stress of the saturated points
+     * at the end of the run: the volume-weighted mean, the least and the
+     * largest pore pressure, and the mean effective vertical stress (the
+     * last coordinate's normal stress, tension positive). A load shared
+     * between the water and the skeleton (Skempton's B under undrained
+     * loading, a drained end state) reads off these.
+     */
+    template <int dim>
+    class PorePressure : public PostprocessorWithState<dim, PorePressure<dim>>
+    {
+    public:
+      static void
+      declare_parameters(ParameterHandler &)
+      {}
+
+      void
+      execute(const Simulator<dim> &, const bool) override
+      {}
+
+      void
+      write_report(const Simulator<dim> &simulator,
+                   std::ostream         &report) override
+      {
+        using Layout       = PropertyLayout<dim>;
+        const auto &water  = simulator.get_pore_water();
+        // sum V p, sum V, sum V sigma'_vv; least and largest p.
+        std::array<double, 3> sums{};
+        double least = std::numeric_limits<double>::max();
+        double largest = -std::numeric_limits<double>::max();
+        if (water.active())
+          for (const auto &point : simulator.get_particle_handler())
+            {
+              const auto props = point.get_properties();
+              if (props[water.porosity_slot()] == 0)
+                continue;
+              const double V = props[Layout::volume];
+              const double p = props[water.pressure_slot()];
+              const auto   stress = simulator.get_grid().to_scene_frame(
+                read_symmetric_tensor(&props[Layout::stress]));
+              sums[0] += V * p;
+              sums[1] += V;
+              sums[2] += V * stress[dim - 1][dim - 1];
+              least   = std::min(least, p);
+              largest = std::max(largest, p);
+            }
+        const MPI_Comm comm = simulator.get_mpi_communicator();
+        Utilities::MPI::sum(ArrayView<const double>(sums.data(), 3),
+                            comm,
+                            ArrayView<double>(sums.data(), 3));
+        least   = Utilities::MPI::min(least, comm);
+        largest = Utilities::MPI::max(largest, comm);
+        report << "## pore pressure of the saturated points at the end\n";
+        if (sums[1] == 0)
+          {
+            report << "no saturated point\n";
+            return;
+          }
+        report << std::setprecision(8)
+               << "mean pore pressure (Pa): " << sums[0] / sums[1] << '\n'
+               << "least pore pressure (Pa): " << least << '\n'
+               << "largest pore pressure (Pa): " << largest << '\n'
+               << "mean effective vertical stress (Pa): "
+               << sums[2] / sums[1] << '\n'
+               << std::setprecision(6);
+      }
+
+      template <class Archive>
+      void
+      serialize(Archive &, const unsigned int)
+      {}
+    };
+  } // namespace Postprocessors
+} // namespace MPM
+
+MPM_REGISTER_POSTPROCESSOR(MPM::Postprocessors::PorePressure,
+                           "pore pressure",
+                           "the saturated points' pore pressure and effective "
+                           "vertical stress at the end.")
