@@ -4,9 +4,7 @@
 #include <mpm/boundary_conditions/node_frames.h>
 #include <mpm/boundary_conditions/wall_friction.h>
 
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/fe/fe_values.h>
+#include <mpm/boundary_conditions/boundary_face_areas.h>
 
 #include <algorithm>
 #include <cmath>
@@ -301,41 +299,21 @@ namespace MPM
           return s.type == BoundaryType::friction;
         }))
       return;
-    FEFaceValues<dim> face_values(grid.mapping,
-                                  grid.fe,
-                                  QGauss<dim - 1>(2),
-                                  update_values | update_JxW_values);
-    for (const auto &cell : grid.dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->face(f)->at_boundary())
-              continue;
-            const types::boundary_id id = cell->face(f)->boundary_id();
-            if (std::none_of(specs.begin(), specs.end(), [id](const auto &s) {
-                  return s.type == BoundaryType::friction &&
-                         std::find(s.ids.begin(), s.ids.end(), id) !=
-                           s.ids.end();
-                }))
-              continue;
-            face_values.reinit(cell, f);
-            for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
-              {
-                const unsigned int cell_vertex =
-                  GeometryInfo<dim>::face_to_cell_vertices(f, v);
-                const unsigned int i =
-                  grid.fe.component_to_system_index(0, cell_vertex);
-                double area = 0;
-                for (unsigned int q = 0; q < face_values.n_quadrature_points;
-                     ++q)
-                  area += face_values.shape_value(i, q) * face_values.JxW(q);
-                for (unsigned int c = 0; c < dim; ++c)
-                  wall_area(cell->vertex_dof_index(cell_vertex, c)) += area;
-              }
-          }
-      }
+    for_each_boundary_face_node_area(
+      grid,
+      [this](const types::boundary_id id) {
+        return std::any_of(specs.begin(), specs.end(), [id](const auto &s) {
+          return s.type == BoundaryType::friction &&
+                 std::find(s.ids.begin(), s.ids.end(), id) != s.ids.end();
+        });
+      },
+      [this](const auto        &cell,
+             const unsigned int cell_vertex,
+             const types::boundary_id,
+             const double area) {
+        for (unsigned int c = 0; c < dim; ++c)
+          wall_area(cell->vertex_dof_index(cell_vertex, c)) += area;
+      });
     wall_area.compress(VectorOperation::add);
     wall_area.update_ghost_values();
     if (periodic_nodes != nullptr)

@@ -1,7 +1,4 @@
-#include <deal.II/base/quadrature_lib.h>
-
-#include <deal.II/fe/fe_values.h>
-
+#include <mpm/boundary_conditions/boundary_face_areas.h>
 #include <mpm/boundary_conditions/surface_tractions.h>
 
 #include <algorithm>
@@ -25,47 +22,30 @@ namespace MPM
       }
     nodal_force.reinit(layout);
     nodal_force = 0;
-    FEFaceValues<dim> face_values(grid.mapping,
-                                  grid.fe,
-                                  QGauss<dim - 1>(2),
-                                  update_values | update_JxW_values);
-    for (const auto &cell : grid.dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        for (const unsigned int f : cell->face_indices())
-          {
-            if (!cell->face(f)->at_boundary())
-              continue;
-            const types::boundary_id id = cell->face(f)->boundary_id();
-            for (const auto &spec : specs)
-              {
-                if (spec.type != BoundaryType::traction ||
-                    std::find(spec.ids.begin(), spec.ids.end(), id) ==
-                      spec.ids.end())
-                  continue;
-                face_values.reinit(cell, f);
-                const Tensor<1, dim> t = grid.to_mesh_frame(spec.traction);
-                for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
-                  {
-                    // int_face N_v dA, with the shape function of the
-                    // face's vertex v (component 0 of the FE system).
-                    const unsigned int cell_vertex =
-                      GeometryInfo<dim>::face_to_cell_vertices(f, v);
-                    const unsigned int i =
-                      grid.fe.component_to_system_index(0, cell_vertex);
-                    double weight = 0;
-                    for (unsigned int q = 0; q < face_values.n_quadrature_points;
-                         ++q)
-                      weight += face_values.shape_value(i, q) *
-                                face_values.JxW(q);
-                    for (unsigned int c = 0; c < dim; ++c)
-                      nodal_force(cell->vertex_dof_index(cell_vertex, c)) +=
-                        weight * t[c];
-                  }
-              }
-          }
-      }
+    const auto loads = [&specs](const types::boundary_id id) {
+      return std::any_of(specs.begin(), specs.end(), [id](const auto &s) {
+        return s.type == BoundaryType::traction &&
+               std::find(s.ids.begin(), s.ids.end(), id) != s.ids.end();
+      });
+    };
+    for_each_boundary_face_node_area(
+      grid,
+      loads,
+      [&](const auto        &cell,
+          const unsigned int cell_vertex,
+          const types::boundary_id id,
+          const double       area) {
+        for (const auto &spec : specs)
+          if (spec.type == BoundaryType::traction &&
+              std::find(spec.ids.begin(), spec.ids.end(), id) !=
+                spec.ids.end())
+            {
+              const Tensor<1, dim> t = grid.to_mesh_frame(spec.traction);
+              for (unsigned int c = 0; c < dim; ++c)
+                nodal_force(cell->vertex_dof_index(cell_vertex, c)) +=
+                  area * t[c];
+            }
+      });
     nodal_force.compress(VectorOperation::add);
     nodal_force.update_ghost_values();
     if (periodic_nodes != nullptr)
