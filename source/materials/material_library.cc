@@ -71,7 +71,10 @@ namespace MPM
         prm.declare_entry("Density",
                           "1000",
                           Patterns::Double(),
-                          "Mass density in kg/m^3; must be > 0.");
+                          "Mass density in kg/m^3; must be > 0. Of a "
+                          "saturated material (Porosity > 0) the solid's "
+                          "mass per volume of the mixture, the dry density "
+                          "(1 - n) rho_s.");
         prm.declare_entry(
           "Minimum density",
           "0",
