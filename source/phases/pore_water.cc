@@ -216,7 +216,7 @@ namespace MPM
       static_cast<unsigned int>(props[Layout::material_id]);
     const double         V   = props[Layout::volume];
     const double         p   = props[pressure_slot()];
-    const double         m_w = n * water_density * V;
+    const double         m_w = water_mass(props);
     const Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
     // Drag per unit relative velocity of the point's water.
     double k = material_permeability[material];
@@ -238,11 +238,10 @@ namespace MPM
         sums[1][i] += (N * m_w) * v_w;
         sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
         sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
+        // The saturated volume at the nodes, in every component.
+        for (unsigned int c = 0; c < dim; ++c)
+          sums[5][i][c] += N * V;
       }
-    // The saturated volume at the nodes, in every component.
-    for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
-      for (unsigned int c = 0; c < dim; ++c)
-        sums[5][i][c] += sf.value[i] * V;
   }
 
 
@@ -398,8 +397,7 @@ namespace MPM
     const double n = props[water.porosity_slot()];
     if (n == 0)
       return;
-    const double m_w =
-      n * water.density() * props[PropertyLayout<dim>::volume];
+    const double m_w = water.water_mass(props);
     const double p = props[water.pressure_slot()];
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       for (unsigned int c = 0; c < dim; ++c)

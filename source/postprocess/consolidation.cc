@@ -137,7 +137,7 @@ namespace MPM
         const bool watching = crossing[1] < 0;
         if (!at_factor && !watching)
           return;
-        const auto sums = compare(simulator, T);
+        const auto sums = compare(simulator, T, at_factor);
         const double U = 1 - sums[0] / (u0 * sums[1]);
         const double targets[2] = {0.5, 0.9};
         for (unsigned int i = 0; i < 2; ++i)
@@ -233,16 +233,17 @@ namespace MPM
       }
 
       /// Over all saturated points: sum V u, sum V, max |u - u_T|,
-      /// sum V (u - u_T)^2, sum V (the last two only when a row is due).
+      /// sum V (u - u_T)^2, sum V (the last three only if @p full: a row
+      /// is due).
       std::array<double, 5>
-      compare(const Simulator<dim> &simulator, const double T) const
+      compare(const Simulator<dim> &simulator,
+              const double          T,
+              const bool            full) const
       {
         using Layout        = PropertyLayout<dim>;
         const auto &water   = simulator.get_pore_water();
         const double gamma_w =
           water.density() * simulator.get_time_stepping().gravity.norm();
-        const bool full =
-          rows.size() < time_factors.size() && T >= time_factors[rows.size()];
         std::array<double, 5> sums{};
         for (const auto &point : simulator.get_particle_handler())
           {

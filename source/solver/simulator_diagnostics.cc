@@ -167,8 +167,7 @@ namespace MPM
         s.max_speed = std::max(s.max_speed, v.norm());
         s.centre_of_mass += m * point.get_location();
         if (pore_water.active())
-          water_mass += props[pore_water.porosity_slot()] *
-                        pore_water.density() * props[Layout::volume];
+          water_mass += pore_water.water_mass(props.data());
       }
     s.n_points = particle_handler.n_global_particles();
     s.mass     = Utilities::MPI::sum(s.mass, mpi_communicator);
@@ -243,7 +242,7 @@ namespace MPM
         // (n V p^2 / (2 K_w)) and its weight.
         const double n   = props[pore_water.porosity_slot()];
         const double V   = props[Layout::volume];
-        const double m_w = n * pore_water.density() * V;
+        const double m_w = pore_water.water_mass(props);
         const double p   = props[pore_water.pressure_slot()];
         energy[0] +=
           0.5 * m_w *

@@ -283,17 +283,6 @@ namespace MPM
                    const PoreWaterAtNodes *water = nullptr);
 
     /**
-     * Each frictional wall node's share of its walls' area, A_i =
-     * int_wall N_i dA (zero elsewhere): what turns a pressure on the wall
-     * into a nodal force.
-     */
-    const NodalVector &
-    frictional_wall_area() const
-    {
-      return wall_area;
-    }
-
-    /**
      * Add the forces of the boundaries' tractions ('Type = traction') to
      * @p force at the local entries @p active_dofs with mass
      * (SurfaceTractions).
@@ -361,7 +350,7 @@ namespace MPM
     does_work() const;
 
   private:
-    /// frictional_wall_area() on the mesh of @p grid.
+    /// wall_area on the mesh of @p grid.
     void
     compute_frictional_wall_area(const BackgroundGrid<dim> &grid,
                                  const NodalVector         &layout,
@@ -390,7 +379,9 @@ namespace MPM
     /// For each node of nodes: its index in water_nodes, or
     /// numbers::invalid_unsigned_int (the water is free there).
     std::vector<unsigned int> water_node_of_node;
-    /// frictional_wall_area().
+    /// Each frictional wall node's share of its walls' area, A_i =
+    /// int_wall N_i dA (zero elsewhere): what turns the pore pressure on
+    /// the wall into a nodal force (apply_friction()).
     NodalVector wall_area;
   };
 } // namespace MPM

@@ -9,6 +9,7 @@
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 #include <mpm/material_points/point_generator.h>
+#include <mpm/material_points/property_layout.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/transfer/phase_kernel.h>
 
@@ -214,7 +215,7 @@ namespace MPM
     couple(NodalFields &nodal, const std::vector<unsigned int> &active_dofs);
 
     /**
-     * The water at the nodes after couple() and before constrain(): its
+     * The water at the nodes after couple() and before finish_velocity(): its
      * nodal porosity m_w / (rho_w sum N V), mass, brought velocity, force
      * and new velocity. A frictional wall's Coulomb resistance acts on the
      * effective normal force with them (BoundaryConditions::
@@ -279,6 +280,15 @@ namespace MPM
     density() const
     {
       return water_density;
+    }
+
+    /// The water of the point with properties @p props, n rho_w V (0 for
+    /// a dry point).
+    double
+    water_mass(const double *props) const
+    {
+      return props[porosity_slot()] * water_density *
+             props[PropertyLayout<dim>::volume];
     }
 
     /// 'Pressure smoothing', or nullptr.
