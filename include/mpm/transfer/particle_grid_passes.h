@@ -266,6 +266,9 @@ namespace MPM
     /// hands to the grid (weights whose entries are not the points).
     std::vector<AffineFitSums>  point_affine_fit;
     std::vector<Tensor<2, dim>> point_affine, point_second_moment;
+    /// APIC: whether update_points_from_grid() fitted each point's affine
+    /// matrix (weights whose entries are not the points).
+    std::vector<unsigned char> point_fitted;
     /// update_phase_points(): per point and source field, the sums of
     /// the values and gradients over its entries (weights whose entries
     /// are not the points).

@@ -469,7 +469,10 @@ namespace MPM
         //    at hand (gather_point_transfer_data()'s copy, without a second
         //    pass over the records).
         if (fit_affine)
-          point_affine.resize(n_points);
+          {
+            point_affine.resize(n_points);
+            point_fitted.resize(n_points);
+          }
         if (remap_momentum)
           point_transfer_data.resize(n_points);
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
@@ -484,7 +487,10 @@ namespace MPM
                               point_sum_v[p],
                               weights().cell_map_of_point(p),
                               chunk_findings[chunk]);
-              if (fits(this->points[p]))
+              const bool fitted = fits(this->points[p]);
+              if (fit_affine)
+                point_fitted[p] = fitted;
+              if (fitted)
                 {
                   const AffineFitSums &sums = point_affine_fit[p];
                   point_affine[p] =
@@ -500,7 +506,10 @@ namespace MPM
             }
         });
         v_max2 = record_chunk_findings();
-        // 3. MUSL: the points' new momentum back to the nodes.
+        // 3. MUSL: the points' new momentum back to the nodes (whether a
+        //    point was fitted read from point_fitted: reading it from the
+        //    point's properties, scattered in memory, stalled this loop
+        //    on every entry).
         if (remap_momentum)
           {
             this->zero_touched_entries(nodal.momentum);
@@ -516,7 +525,8 @@ namespace MPM
                     const unsigned int p = weights().point_of_entry(k);
                     remap(cell,
                           k,
-                          fits(this->points[p]) ? &point_affine[p] : nullptr,
+                          fit_affine && point_fitted[p] ? &point_affine[p] :
+                                                          nullptr,
                           remapped[0]);
                   }
               });
