@@ -229,6 +229,12 @@ namespace MPM
     corner_slot_of_cell.assign(triangulation.n_active_cells(),
                                numbers::invalid_unsigned_int);
     cell_patch_directions.assign(triangulation.n_active_cells(), {});
+    cell_stretch2.assign(triangulation.n_active_cells(), 1.);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        cell_stretch2[cell->active_cell_index()] =
+          PointDomains<dim>::cell_stretch2(
+            this->context.grid.cell_vertices(cell->active_cell_index()));
     // The hints name cells of these patches by position and index.
     corner_hints.clear();
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -747,6 +753,7 @@ namespace MPM
         double *props          = point->get_properties().data();
         this->points[p]        = props;
         point_cell_map[p]      = dim == 2 ? &grid.bilinear_map(cell) : nullptr;
+        point_cell_stretch2[p] = cell_stretch2[cell->active_cell_index()];
         const unsigned int hint_index = point->get_local_index();
         CornerHint        &hint       = corner_hints[hint_index];
         const CornerHint  *own_hint =
@@ -863,6 +870,7 @@ namespace MPM
       particle_handler.n_locally_owned_particles();
     this->points.resize(n_points);
     point_cell_map.resize(n_points);
+    point_cell_stretch2.resize(n_points);
     // This step's corners, n_corners per point in the order of the points
     // (reused storage).
     auto &corners = located_corners;
@@ -985,14 +993,15 @@ namespace MPM
 
   template <int dim>
   void
-  CpdiWeights<dim>::deform_with_point(double               *props,
+  CpdiWeights<dim>::deform_with_point(const unsigned int    p,
+                                      double               *props,
                                       const Tensor<2, dim> &grad_v,
                                       const double          volume_factor) const
   {
     // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
     const auto D = PointDomains<dim>::read(props + this->own_slot);
-    auto       deformed =
-      point_domains.deformed_domain(D, this->context.time_step * grad_v);
+    auto       deformed = point_domains.deformed_domain(
+      D, this->context.time_step * grad_v, point_cell_stretch2[p]);
     // Its area (volume) stays the point's.
     if (volume_factor != 1.)
       {

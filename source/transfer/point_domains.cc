@@ -17,9 +17,10 @@ namespace MPM
         Patterns::Double(1),
         "'cpdi' only: when a point's domain has a half edge longer than "
         "this many times the half side of the square (cube) of the same "
-        "volume, it is reset to that square, turned by the domain's "
-        "rotation. Large flows stretch domains into needles many cells "
-        "long otherwise.");
+        "volume, times the same ratio of its cell (1 for a square cell), "
+        "it is reset to that square, turned by the domain's rotation. "
+        "Large flows stretch domains into needles many cells long "
+        "otherwise.");
     }
     prm.leave_subsection();
   }
@@ -78,9 +79,39 @@ namespace MPM
 
 
   template <int dim>
+  double
+  PointDomains<dim>::cell_stretch2(
+    const std::array<Point<dim>, n_corners> &vertices)
+  {
+    // J at the centre: each column the mean of the cell's edges along
+    // that reference direction.
+    Tensor<2, dim> J;
+    for (unsigned int i = 0; i < n_corners; ++i)
+      for (unsigned int e = 0; e < dim; ++e)
+        {
+          const double g = (((i >> e) & 1) ? 1. : -1.) / (n_corners / 2);
+          for (unsigned int a = 0; a < dim; ++a)
+            J[a][e] += g * vertices[i][a];
+        }
+    double longest2 = 0;
+    for (unsigned int e = 0; e < dim; ++e)
+      {
+        double length2 = 0;
+        for (unsigned int a = 0; a < dim; ++a)
+          length2 += J[a][e] * J[a][e];
+        longest2 = std::max(longest2, length2);
+      }
+    const double det     = std::abs(determinant(J));
+    const double stretch2 = det > 0 ? longest2 / std::pow(det, 2. / dim) : 1.;
+    return stretch2 < 1 + 1e-10 ? 1. : stretch2;
+  }
+
+
+  template <int dim>
   typename PointDomains<dim>::Offsets
   PointDomains<dim>::deformed_domain(const Offsets        &D,
-                                     const Tensor<2, dim> &dt_grad_v) const
+                                     const Tensor<2, dim> &dt_grad_v,
+                                     const double          cell_stretch2) const
   {
     Offsets deformed;
     for (unsigned int c = 0; c < n_corners; ++c)
@@ -99,7 +130,7 @@ namespace MPM
     // compared cubed (longest^6 <= limit^6 det^2): no pow() for the
     // domains within the limit, nearly all of them (pow() was 2 % of a
     // CPDI step). In 2D side^2 is |det| itself.
-    const double limit2 = stretch_limit * stretch_limit;
+    const double limit2 = stretch_limit * stretch_limit * cell_stretch2;
     const bool   within =
       dim == 2 ? longest2 <= limit2 * std::abs(det) :
                  longest2 * longest2 * longest2 <=

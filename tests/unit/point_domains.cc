@@ -176,7 +176,7 @@ main()
     // A small deformation: (I + dt grad v) R.
     Tensor<2, 2> dt_grad_v;
     dt_grad_v[0][1] = 0.1;
-    const auto small = domains.deformed_domain(D, dt_grad_v);
+    const auto small = domains.deformed_domain(D, dt_grad_v, 1.);
     double     small_error = 0;
     for (unsigned int c = 0; c < 4; ++c)
       small_error = std::max(small_error,
@@ -196,13 +196,50 @@ main()
     // (I + stretch) = diag(4, 1/4) in the rotated frame: area kept.
     const Tensor<2, 2> dt_grad = Q * stretch * transpose(Q);
     const Tensor<2, 2> reset   = PointDomains<2>::affine_part(
-      domains.deformed_domain(PointDomains<2>::parallelepiped(square), dt_grad));
+      domains.deformed_domain(PointDomains<2>::parallelepiped(square), dt_grad, 1.));
     std::cout << "    reset domain / (0.01 Q) - 1: "
               << flush_to_zero((reset - square).norm() / square.norm())
               << '\n';
     check((reset - square).norm() < 1e-10 * square.norm(),
           "a domain stretched 16:1 is reset to the square of its area, "
           "same rotation");
+
+    // The limit is relative to the cell's own shape: a square cell (also
+    // turned) has stretch 1, a cell four times as wide as high stretch 2
+    // (squared: 4), and the domain such a cell gives a point (stretch 2,
+    // at the bare limit) stays as it is under a small compression.
+    const std::array<Point<2>, 4> square_cell = {
+      {Point<2>(0, 0), Point<2>(0.1, 0), Point<2>(0, 0.1), Point<2>(0.1, 0.1)}};
+    std::array<Point<2>, 4> turned_cell;
+    for (unsigned int v = 0; v < 4; ++v)
+      turned_cell[v] = Point<2>(Q * square_cell[v]);
+    const std::array<Point<2>, 4> flat_cell = {
+      {Point<2>(0, 0), Point<2>(0.4, 0), Point<2>(0, 0.1), Point<2>(0.4, 0.1)}};
+    std::cout << "    cell_stretch2 of a square, a turned square, a 4:1 cell: "
+              << PointDomains<2>::cell_stretch2(square_cell) << ", "
+              << PointDomains<2>::cell_stretch2(turned_cell) << ", "
+              << PointDomains<2>::cell_stretch2(flat_cell) << '\n';
+    check(PointDomains<2>::cell_stretch2(square_cell) == 1 &&
+            PointDomains<2>::cell_stretch2(turned_cell) == 1,
+          "a square cell, turned or not, has stretch 1");
+    check(std::abs(PointDomains<2>::cell_stretch2(flat_cell) - 4) < 1e-12,
+          "a 4:1 cell has squared stretch 4");
+    const auto flat_domain = PointDomains<2>::initial_domain(
+      flat_cell, Point<2>(0.25, 0.25), 0.4 * 0.1 / 4);
+    Tensor<2, 2> squeeze;
+    squeeze[1][1] = -1e-4;
+    const auto kept = domains.deformed_domain(
+      flat_domain, squeeze, PointDomains<2>::cell_stretch2(flat_cell));
+    const auto reset_flat =
+      domains.deformed_domain(flat_domain, squeeze, 1.);
+    std::cout << "    4:1 cell's domain squeezed by 1e-4: width "
+              << 2 * PointDomains<2>::affine_part(kept)[0][0]
+              << " (limit relative to the cell), "
+              << 2 * PointDomains<2>::affine_part(reset_flat)[0][0]
+              << " (bare limit)\n";
+    check(std::abs(2 * PointDomains<2>::affine_part(kept)[0][0] - 0.2) <
+            1e-12,
+          "a 4:1 cell's domain keeps its shape under a small deformation");
   }
   return UnitTest::summary();
 }

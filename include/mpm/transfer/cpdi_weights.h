@@ -96,11 +96,14 @@ namespace MPM
       return dx;
     }
 
-    /// The domain deforms with the point: D_c <- (I + dt grad v) D_c,
-    /// and shrinks about it if the point's volume was reduced by
-    /// @p volume_factor < 1 (its material's 'Minimum density').
+    /// The domain of point @p p deforms with the point: D_c <- (I + dt
+    /// grad v) D_c (PointDomains::deformed_domain(), its stretch limited
+    /// relative to the point's cell's), and shrinks about it if the
+    /// point's volume was reduced by @p volume_factor < 1 (its material's
+    /// 'Minimum density').
     void
-    deform_with_point(double               *props,
+    deform_with_point(const unsigned int    p,
+                      double               *props,
                       const Tensor<2, dim> &grad_v,
                       const double          volume_factor) const;
 
@@ -196,6 +199,9 @@ namespace MPM
     std::vector<unsigned int> corner_slot_of_cell;
     /// Each point's cell map (2D).
     std::vector<const BilinearCellMap *> point_cell_map;
+    /// PointDomains::cell_stretch2() of each locally owned cell (by
+    /// active_cell_index()) and of each point's cell.
+    std::vector<double> cell_stretch2, point_cell_stretch2;
     /// The cells a corner of a point in each locally owned cell may lie in
     /// (their active_cell_index(), by active_cell_index(); the cell itself
     /// first).

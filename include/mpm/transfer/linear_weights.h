@@ -53,7 +53,10 @@ namespace MPM
     }
 
     static void
-    deform_with_point(double *, const Tensor<2, dim> &, const double)
+    deform_with_point(const unsigned int,
+                      double *,
+                      const Tensor<2, dim> &,
+                      const double)
     {}
 
     static const BilinearCellMap *

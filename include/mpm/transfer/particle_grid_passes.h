@@ -35,8 +35,8 @@ namespace MPM
    *   point_properties()).
    * - `VertexValues node_offsets(cell, k)`: x_i - xbar_p for the vertices of
    *   entry k's cell, about the point's affine centre (APIC).
-   * - `void deform_with_point(props, grad_v, volume_factor)`: whatever the
-   *   weights keep on a point that deforms with it (CPDI's domain), after
+   * - `void deform_with_point(p, props, grad_v, volume_factor)`: whatever
+   *   the weights keep on point p that deforms with it (CPDI's domain), after
    *   its stress update, which reduced the point's volume by
    *   @p volume_factor beyond the deformation (PointUpdate::update_stress()).
    * - `const BilinearCellMap *cell_map_of_point(p)` (only if the entries are

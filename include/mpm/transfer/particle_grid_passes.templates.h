@@ -568,7 +568,7 @@ namespace MPM
       const double volume_factor =
         updater.update_stress(props, grad_v, cell_size, found);
       const bool gradient_is_affine = store_gradient(props);
-      weights().deform_with_point(props, grad_v, volume_factor);
+      weights().deform_with_point(p, props, grad_v, volume_factor);
       if (gradient_is_affine)
         Apic<dim>::store_affine(grad_v, D, props + this->transfer_slot);
     };

@@ -161,10 +161,12 @@ namespace MPM
     /**
      * The domain @p D after a deformation step by the velocity gradient
      * times dt, @p dt_grad_v: (I + dt grad v) D_c, or, if that stretches it
-     * more than the 'CPDI stretch limit' (the longest half edge of its
-     * affine part over the half side of the square or cube of the same
-     * volume), that square (cube) turned by the domain's rotation (the
-     * orthogonal factor of the polar decomposition of its affine part).
+     * more than the 'CPDI stretch limit' times the stretch of its cell's
+     * own shape (the stretch: the longest half edge of the affine part
+     * over the half side of the square or cube of the same volume;
+     * @p cell_stretch2 the square of the cell's, cell_stretch2()), that
+     * square (cube) turned by the domain's rotation (the orthogonal factor
+     * of the polar decomposition of its affine part).
      *
      * Why: in granular flow the deformation gradient of a point grows
      * without bound (shear strains of hundreds), and the domain x_p + F D0
@@ -173,10 +175,26 @@ namespace MPM
      * the column collapse at a = 2 created energy (doc/convergence.md).
      * The weights need a domain of the point's volume around it, not its
      * full history, so the shape is reset, as CPDI codes do for large
-     * deformation.
+     * deformation. Relative to the cell: a point in a cell four times as
+     * wide as high starts with a domain of that shape (stretch 2 in 2D),
+     * which the bare limit reset to a square at its first step, so that a
+     * layer at rest on such cells did not stay at rest (a saturated one's
+     * pore pressure 31 % off).
      */
     Offsets
-    deformed_domain(const Offsets &D, const Tensor<2, dim> &dt_grad_v) const;
+    deformed_domain(const Offsets        &D,
+                    const Tensor<2, dim> &dt_grad_v,
+                    const double          cell_stretch2) const;
+
+    /**
+     * The square of the stretch of the domain a cell with vertices
+     * @p vertices gives its points (the Jacobian of its map at its
+     * centre): the longest edge of the cell's affine part over the side
+     * of the square (cube) of its volume. 1 for a square or a cube, and
+     * for any cell within 1e-10 of 1.
+     */
+    static double
+    cell_stretch2(const std::array<Point<dim>, n_corners> &vertices);
 
     /**
      * corner_weights() of the parallelepiped x_p + R s in closed form:
