@@ -118,6 +118,20 @@ namespace MPM
                           "frame (x, y[, z]); e.g. '0, -1e5' presses a top "
                           "face down with 100 kPa. It acts on the nodes of "
                           "the faces that hold material.");
+        prm.declare_entry("Pore pressure",
+                          "none",
+                          Patterns::Anything(),
+                          "For the pore water: 'none', or the pressure in "
+                          "Pa (compression positive) of the water this "
+                          "boundary drains into, a function of the scene's "
+                          "x, y (, z) and the time t, e.g. '9810 * (5 - y)' "
+                          "for a reservoir whose level is at y = 5 m. Its "
+                          "faces push the water with n p dA and the "
+                          "skeleton with (1 - n) p dA (n the nodal "
+                          "porosity), the total p dA of water standing on "
+                          "the boundary, at the nodes that hold saturated "
+                          "material. A wall with a pore pressure must be "
+                          "'Drainage = drained'; not on Type = friction.");
         prm.leave_subsection();
       }
     prm.leave_subsection();
@@ -181,6 +195,19 @@ namespace MPM
                                                  path + "Velocity");
           }
         s.drained = prm.get("Drainage") == "drained";
+        if (prm.get("Pore pressure") != "none")
+          {
+            s.pore_pressure = prm.get("Pore pressure");
+            check_input(s.type != BoundaryType::friction,
+                        path + "Pore pressure: not implemented on a "
+                               "Type = friction boundary (the basal law's "
+                               "effective normal stress does not take it "
+                               "yet).");
+            check_input(!is_wall(s.type) || s.drained,
+                        path + "Pore pressure needs 'Drainage = drained' "
+                               "on a wall: the water of a prescribed "
+                               "pressure passes through the boundary.");
+          }
         if (s.type == BoundaryType::traction)
           s.traction =
             parse_point<dim>(prm.get("Traction"), path + "Traction");
@@ -250,6 +277,7 @@ namespace MPM
     set_contact(merge(contact_before));
     wall_gap.setup(grid, specs, layout, nodes);
     tractions.setup(grid, specs, layout, periodic_nodes);
+    pore_pressures.setup(grid, specs, layout, periodic_nodes);
     compute_frictional_wall_area(grid, layout, periodic_nodes);
     // The pore water's walls: the same without the drained ones.
     water_nodes.clear();

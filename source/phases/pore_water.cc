@@ -248,7 +248,8 @@ namespace MPM
   template <int dim>
   void
   PoreWater<dim>::couple(NodalFields                     &nodal,
-                         const std::vector<unsigned int> &active_dofs)
+                         const std::vector<unsigned int> &active_dofs,
+                         const NodalVector               *boundary_forces)
   {
     const double dt = time_step;
     for (const unsigned int i : active_dofs)
@@ -263,6 +264,15 @@ namespace MPM
             velocity.local_element(i)     = 0;
             velocity_new.local_element(i) = 0;
             continue;
+          }
+        if (boundary_forces != nullptr)
+          {
+            // Water of a prescribed pressure on a boundary: the water's
+            // share of its push is the nodal porosity's.
+            const double F = boundary_forces->local_element(i);
+            const double n = nodal_porosity.local_element(i);
+            force.local_element(i) += n * F;
+            skeleton_pressure_force.local_element(i) += (1 - n) * F;
           }
         const double v_s = nodal.momentum.local_element(i) / m_s;
         const double v_w = momentum.local_element(i) / m_w;

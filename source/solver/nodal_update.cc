@@ -43,7 +43,9 @@ namespace MPM
         // with the water's drag (PoreWater::couple()).
         TimerOutput::Scope t(timer, "pore water");
         weights->map_phase(pore_water);
-        pore_water.couple(nodal, weights->active_dofs());
+        pore_water.couple(nodal,
+                          weights->active_dofs(),
+                          boundary_conditions.pore_pressure_forces(time));
       }
     for_each_active_dof([&](const unsigned int i) {
       const double m = nodal.mass.local_element(i);

@@ -7,6 +7,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include <mpm/boundary_conditions/boundary_spec.h>
+#include <mpm/boundary_conditions/boundary_pore_pressures.h>
 #include <mpm/boundary_conditions/surface_tractions.h>
 #include <mpm/boundary_conditions/wall_constraints.h>
 #include <mpm/boundary_conditions/wall_gap.h>
@@ -283,6 +284,17 @@ namespace MPM
                    const PoreWaterAtNodes *water = nullptr);
 
     /**
+     * The nodal forces of the boundaries' prescribed pore pressures at
+     * time @p time (BoundaryPorePressures), or nullptr if no boundary has
+     * one.
+     */
+    const NodalVector *
+    pore_pressure_forces(const double time)
+    {
+      return pore_pressures.forces_at(time);
+    }
+
+    /**
      * Add the forces of the boundaries' tractions ('Type = traction') to
      * @p force at the local entries @p active_dofs with mass
      * (SurfaceTractions).
@@ -372,6 +384,7 @@ namespace MPM
     WallGap<dim> wall_gap;
     /// The loads of the boundaries of Type = traction.
     SurfaceTractions<dim> tractions;
+    BoundaryPorePressures<dim> pore_pressures;
     /// Whether a wall is 'Drainage = drained', and then the projections
     /// of the pore water's walls (the impermeable ones).
     bool                         has_drained_walls = false;

@@ -62,6 +62,10 @@ namespace MPM
     /// 'Drainage = drained': pore water passes through this wall (its
     /// normal velocity is free there, the pore pressure zero).
     bool                            drained = false;
+    /// 'Pore pressure': the pressure (Pa) of the water this boundary
+    /// drains into, a function of the scene's x, y (, z) and t, or empty
+    /// for none (a drained boundary at p = 0). BoundaryPorePressures.
+    std::string                     pore_pressure;
   };
 } // namespace MPM
 

@@ -208,11 +208,15 @@ namespace MPM
      * implicit, at the nodes @p active_dofs (local elements): on return
      * nodal.force holds the skeleton's force that gives its new velocity
      * from the momentum it brought (the drag included), and the water's
-     * new velocity is in its own field. After map_phase() with this
-     * kernel.
+     * new velocity is in its own field. @p boundary_forces (or nullptr):
+     * the forces of the boundaries' prescribed pore pressures
+     * (BoundaryPorePressures), shared by the phases as the nodal porosity
+     * says. After map_phase() with this kernel.
      */
     void
-    couple(NodalFields &nodal, const std::vector<unsigned int> &active_dofs);
+    couple(NodalFields                     &nodal,
+           const std::vector<unsigned int> &active_dofs,
+           const NodalVector               *boundary_forces);
 
     /**
      * The water at the nodes after couple() and before finish_velocity(): its
