@@ -249,7 +249,8 @@ namespace MPM
   void
   PoreWater<dim>::couple(NodalFields                     &nodal,
                          const std::vector<unsigned int> &active_dofs,
-                         const NodalVector               *boundary_forces)
+                         const NodalVector               *boundary_forces,
+                         const double                     local_damping)
   {
     const double dt = time_step;
     for (const unsigned int i : active_dofs)
@@ -276,8 +277,24 @@ namespace MPM
           }
         const double v_s = nodal.momentum.local_element(i) / m_s;
         const double v_w = momentum.local_element(i) / m_w;
-        const double F_s = nodal.force.local_element(i) +
-                           skeleton_pressure_force.local_element(i);
+        double F_s = nodal.force.local_element(i) +
+                     skeleton_pressure_force.local_element(i);
+        if (local_damping > 0)
+          {
+            // Cundall's local damping on the mixture: against the
+            // skeleton's motion, proportional to the mixture's unbalanced
+            // force (the drag cancels in it), shared by the phases as
+            // their masses. Damping the skeleton alone after this solve
+            // let it move against its water: under undrained loading the
+            // points' pore pressures then split from their effective
+            // stresses cell by cell (3 % of the pressure).
+            const double v    = nodal.velocity.local_element(i);
+            const double sign = v > 0 ? 1. : v < 0 ? -1. : 0.;
+            const double damping =
+              local_damping * std::abs(F_s + force.local_element(i)) * sign;
+            F_s -= damping * m_s / (m_s + m_w);
+            force.local_element(i) -= damping * m_w / (m_s + m_w);
+          }
         const double F_w = force.local_element(i);
         const double Q   = drag.local_element(i);
         // [a + Q, -Q; -Q, b + Q] [v_s'; v_w'] = [a v_s + F_s; b v_w + F_w]

@@ -33,7 +33,10 @@ namespace MPM
   {
     TimerOutput::Scope t(timer, "nodal update");
     const double       dt    = time_step;
-    const double       alpha = time_stepping.local_damping_at(time);
+    // Cundall's local damping (with pore water, on the mixture inside
+    // PoreWater::couple()).
+    const double alpha =
+      pore_water.active() ? 0. : time_stepping.local_damping_at(time);
     boundary_conditions.add_traction_forces(nodal.mass,
                                             weights->active_dofs(),
                                             nodal.force);
@@ -45,7 +48,8 @@ namespace MPM
         weights->map_phase(pore_water);
         pore_water.couple(nodal,
                           weights->active_dofs(),
-                          boundary_conditions.pore_pressure_forces(time));
+                          boundary_conditions.pore_pressure_forces(time),
+                          time_stepping.local_damping_at(time));
       }
     for_each_active_dof([&](const unsigned int i) {
       const double m = nodal.mass.local_element(i);

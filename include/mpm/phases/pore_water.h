@@ -211,12 +211,15 @@ namespace MPM
      * new velocity is in its own field. @p boundary_forces (or nullptr):
      * the forces of the boundaries' prescribed pore pressures
      * (BoundaryPorePressures), shared by the phases as the nodal porosity
-     * says. After map_phase() with this kernel.
+     * says. @p local_damping: Cundall's coefficient alpha, applied here
+     * to the mixture (the dry nodal update then damps no more). After
+     * map_phase() with this kernel.
      */
     void
     couple(NodalFields                     &nodal,
            const std::vector<unsigned int> &active_dofs,
-           const NodalVector               *boundary_forces);
+           const NodalVector               *boundary_forces,
+           const double                     local_damping);
 
     /**
      * The water at the nodes after couple() and before finish_velocity(): its
