@@ -43,19 +43,6 @@ namespace MPM
                       "(1 - n0)^2) with n0 the material's 'Porosity' (a "
                       "compacting skeleton drains more slowly, a dilating "
                       "one faster).");
-    prm.declare_entry("Pressure smoothing",
-                      "false",
-                      Patterns::Bool(),
-                      "After each step's pore pressure update, project the "
-                      "points' pressures onto the nodes and give each "
-                      "point the value interpolated back "
-                      "(PressureSmoothing): removes the point-to-point "
-                      "oscillation of the pressure under sudden undrained "
-                      "loading (spread 3 % -> 0.2 %), but the projection "
-                      "every step diffuses the pressure: Terzaghi's "
-                      "consolidation runs 2.6 times too fast with it "
-                      "(doc/pore_water.md). For fast, undrained loading "
-                      "only.");
     prm.declare_entry("Initial pore pressure",
                       "0",
                       Patterns::Anything(),
@@ -78,9 +65,6 @@ namespace MPM
     bulk_modulus  = prm.get_double("Bulk modulus");
     viscosity     = prm.get_double("Viscosity");
     kozeny_carman = prm.get("Permeability law") == "kozeny-carman";
-    smoothing.reset();
-    if (prm.get_bool("Pressure smoothing"))
-      smoothing = std::make_unique<PressureSmoothing<dim>>(*this);
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -127,8 +111,6 @@ namespace MPM
     nodal.add(nodal_porosity, NodalFields::Ghosts::computed);
     nodal.add(velocity, NodalFields::Ghosts::computed);
     nodal.add(velocity_new, NodalFields::Ghosts::computed);
-    if (smoothing)
-      smoothing->initialize(nodal);
     nodal.add(velocity_against_held_skeleton, NodalFields::Ghosts::computed);
   }
 
@@ -383,81 +365,6 @@ namespace MPM
   }
 
 
-  template <int dim>
-  void
-  PressureSmoothing<dim>::initialize(NodalFields &nodal)
-  {
-    nodal.add(pressure_sums, NodalFields::Ghosts::summed);
-    nodal.add(mass_sums, NodalFields::Ghosts::summed);
-    nodal.add(nodal_pressure, NodalFields::Ghosts::computed);
-  }
-
-
-  template <int dim>
-  void
-  PressureSmoothing<dim>::compute_nodal_pressure(
-    const std::vector<unsigned int> &active_dofs)
-  {
-    for (const unsigned int i : active_dofs)
-      {
-        const double m = mass_sums.local_element(i);
-        nodal_pressure.local_element(i) =
-          m > 0 ? pressure_sums.local_element(i) / m : 0.;
-      }
-  }
-
-
-  template <int dim>
-  typename PhaseKernel<dim>::Targets
-  PressureSmoothing<dim>::grid_targets()
-  {
-    return {{&pressure_sums, &mass_sums, nullptr, nullptr, nullptr, nullptr}};
-  }
-
-
-  template <int dim>
-  void
-  PressureSmoothing<dim>::add_to_grid(const double                    *props,
-                                      const Q1ShapeFunctions<dim>     &sf,
-                                      typename PhaseKernel<dim>::Sums &sums) const
-  {
-    const double n = props[water.porosity_slot()];
-    if (n == 0)
-      return;
-    const double m_w = water.water_mass(props);
-    const double p = props[water.pressure_slot()];
-    for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
-      for (unsigned int c = 0; c < dim; ++c)
-        {
-          sums[0][i][c] += sf.value[i] * m_w * p;
-          sums[1][i][c] += sf.value[i] * m_w;
-        }
-  }
-
-
-  template <int dim>
-  typename PhaseKernel<dim>::Sources
-  PressureSmoothing<dim>::grid_sources()
-  {
-    return {{&nodal_pressure, nullptr, nullptr}};
-  }
-
-
-  template <int dim>
-  void
-  PressureSmoothing<dim>::update_point(
-    double                                                          *props,
-    const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
-    const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &) const
-  {
-    if (props[water.porosity_slot()] == 0)
-      return;
-    props[water.pressure_slot()] = values[0][0];
-  }
-
-
-  template class PressureSmoothing<2>;
-  template class PressureSmoothing<3>;
   template class PoreWater<2>;
   template class PoreWater<3>;
 } // namespace MPM

@@ -351,12 +351,6 @@ namespace MPM
         TimerOutput::Scope t(timer, "pore water");
         pore_water.set_skeleton_velocity(nodal.velocity_new);
         weights->update_phase_points(pore_water);
-        if (auto *smoothing = pore_water.pressure_smoothing())
-          {
-            weights->map_phase(*smoothing);
-            smoothing->compute_nodal_pressure(weights->active_dofs());
-            weights->update_phase_points(*smoothing);
-          }
       }
     set_max_point_speed(weights->update_points_from_grid(remap_momentum));
   }

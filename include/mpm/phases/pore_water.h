@@ -49,63 +49,12 @@ namespace MPM
    *    n from the skeleton's volume change dn = (1 - n) div v_s dt, with
    *    the end-of-step nodal velocities.
    *
-   * A boundary without a wall drains: the weak form has no pressure term
-   * there, which is p = 0.
+   * A boundary without a wall drains, and so does a free surface inside
+   * the mesh: the weak form has no pressure term there, which is p = 0; a
+   * boundary with a 'Pore pressure' adds the term of its p_b
+   * (BoundaryPorePressures). Local damping acts on the mixture in
+   * couple().
    */
-  template <int dim>
-  class PoreWater;
-
-  /**
-   * Nodal pressure smoothing ('Pore water/Pressure smoothing'): after the
-   * points' pore pressure is updated, it is projected onto the nodes,
-   * p_i = sum N_i m_w p / sum N_i m_w, and each point takes the value
-   * interpolated back, p = sum N_i p_i: what the points' pressures
-   * oscillate about from point to point (equal-order interpolation of the
-   * velocities and the pressure) is removed, at the price of a smoothing
-   * over a cell at every step: a diffusion of the pressure far larger
-   * than a consolidation's (measured in doc/pore_water.md).
-   */
-  template <int dim>
-  class PressureSmoothing : public PhaseKernel<dim>
-  {
-  public:
-    explicit PressureSmoothing(const PoreWater<dim> &water)
-      : water(water)
-    {}
-
-    /// Register the nodal fields with @p nodal.
-    void
-    initialize(NodalFields &nodal);
-
-    /// p_i at the nodes @p active_dofs, after map_phase() with this kernel.
-    void
-    compute_nodal_pressure(const std::vector<unsigned int> &active_dofs);
-
-    typename PhaseKernel<dim>::Targets
-    grid_targets() override;
-
-    void
-    add_to_grid(const double                    *props,
-                const Q1ShapeFunctions<dim>     &sf,
-                typename PhaseKernel<dim>::Sums &sums) const override;
-
-    typename PhaseKernel<dim>::Sources
-    grid_sources() override;
-
-    void
-    update_point(
-      double                                                          *props,
-      const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
-      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
-        &gradients) const override;
-
-  private:
-    const PoreWater<dim> &water;
-    /// sum N m_w p and sum N m_w (every component), and p_i.
-    NodalVector pressure_sums, mass_sums, nodal_pressure;
-  };
-
-
   template <int dim>
   class PoreWater : public PhaseKernel<dim>
   {
@@ -298,13 +247,6 @@ namespace MPM
              props[PropertyLayout<dim>::volume];
     }
 
-    /// 'Pressure smoothing', or nullptr.
-    PressureSmoothing<dim> *
-    pressure_smoothing()
-    {
-      return smoothing.get();
-    }
-
     double
     get_bulk_modulus() const
     {
@@ -326,8 +268,6 @@ namespace MPM
     double      viscosity        = 1e-3;
     /// 'Permeability law = kozeny-carman'.
     bool        kozeny_carman    = false;
-    /// 'Pressure smoothing'.
-    std::unique_ptr<PressureSmoothing<dim>> smoothing;
     std::string initial_pressure_expression = "0";
     std::unique_ptr<FunctionParser<dim>> initial_pressure;
 
