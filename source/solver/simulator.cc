@@ -175,7 +175,8 @@ namespace MPM
         // stopped or crashed) are dropped; they will be written again.
         statistics_file.open(output_writer.directory() + "statistics",
                              checkpointing.resume(),
-                             statistics_length);
+                             statistics_length,
+                             pore_water.active());
       }
   }
 

@@ -146,8 +146,10 @@ namespace MPM
   {
     using Layout = PropertyLayout<dim>;
     GlobalStatistics<dim> s;
-    // The pore water's mass, for the periodic correction below.
-    double water_mass = 0;
+    // The pore water's mass (also for the periodic correction below), its
+    // momentum, and the saturated volume and sum V p.
+    double         water_mass = 0, saturated_volume = 0, pressure_sum = 0;
+    Tensor<1, dim> water_momentum;
     s.time      = time;
     s.time_step = time_step;
     s.step      = step;
@@ -166,8 +168,27 @@ namespace MPM
         s.mean_speed += v.norm();
         s.max_speed = std::max(s.max_speed, v.norm());
         s.centre_of_mass += m * point.get_location();
-        if (pore_water.active())
-          water_mass += pore_water.water_mass(props.data());
+        if (pore_water.active() && props[pore_water.porosity_slot()] > 0)
+          {
+            const double m_w = pore_water.water_mass(props.data());
+            water_mass += m_w;
+            water_momentum +=
+              m_w * read_vector<dim>(&props[pore_water.velocity_slot()]);
+            saturated_volume += props[Layout::volume];
+            pressure_sum +=
+              props[Layout::volume] * props[pore_water.pressure_slot()];
+          }
+      }
+    if (pore_water.active())
+      {
+        water_mass       = Utilities::MPI::sum(water_mass, mpi_communicator);
+        s.water_mass     = water_mass;
+        s.water_momentum = Utilities::MPI::sum(water_momentum, mpi_communicator);
+        saturated_volume =
+          Utilities::MPI::sum(saturated_volume, mpi_communicator);
+        s.mean_pore_pressure =
+          Utilities::MPI::sum(pressure_sum, mpi_communicator) /
+          (saturated_volume > 0 ? saturated_volume : 1);
       }
     s.n_points = particle_handler.n_global_particles();
     s.mass     = Utilities::MPI::sum(s.mass, mpi_communicator);
@@ -190,9 +211,7 @@ namespace MPM
         // wraps with it, taken in the ratio of the two masses now (exact
         // for a uniform saturation).
         const double water_share =
-          pore_water.active() && s.mass > 0 ?
-            Utilities::MPI::sum(water_mass, mpi_communicator) / s.mass :
-            0.;
+          pore_water.active() && s.mass > 0 ? water_mass / s.mass : 0.;
         s.gravitational_potential_energy +=
           (1 + water_share) * (time_stepping.gravity * shift);
         unwrapped_centre_shift = shift;

@@ -8,7 +8,7 @@ namespace MPM
 {
   template <int dim>
   std::vector<typename StatisticsFile<dim>::Column>
-  StatisticsFile<dim>::columns()
+  StatisticsFile<dim>::columns() const
   {
     const auto scalar = [](auto value) {
       return [value](std::ostream &out, const Row &row) {
@@ -22,7 +22,7 @@ namespace MPM
           out << ' ' << v[d];
       };
     };
-    return {
+    std::vector<Column> list = {
       {"time", "s", 1, scalar([](const Row &r) { return r.statistics.time; })},
       {"step", "", 1, scalar([](const Row &r) { return r.statistics.step; })},
       {"time step",
@@ -73,6 +73,23 @@ namespace MPM
        "kg",
        1,
        scalar([](const Row &r) { return r.removed_mass; })}};
+    if (with_pore_water)
+      list.insert(
+        list.end(),
+        {{"water mass",
+          "kg",
+          1,
+          scalar([](const Row &r) { return r.statistics.water_mass; })},
+         {"water momentum",
+          "kg m/s",
+          dim,
+          vector([](const Row &r) { return r.statistics.water_momentum; })},
+         {"mean pore pressure",
+          "Pa",
+          1,
+          scalar(
+            [](const Row &r) { return r.statistics.mean_pore_pressure; })}});
+    return list;
   }
 
 
@@ -80,8 +97,10 @@ namespace MPM
   void
   StatisticsFile<dim>::open(const std::string  &name,
                             const bool          resume,
-                            const std::uint64_t resume_length)
+                            const std::uint64_t resume_length,
+                            const bool          with_water)
   {
+    with_pore_water = with_water;
     if (resume)
       {
         if (std::filesystem::exists(name) &&

@@ -33,6 +33,13 @@ namespace MPM
     double                mean_speed     = 0;
     double                max_speed      = 0;
     Tensor<1, dim>        centre_of_mass;
+    /// With pore water: the water's mass sum n rho_w V, momentum sum
+    /// n rho_w V v_w, and the mean pore pressure over the saturated
+    /// points' volume (the fields above are the skeleton's, but for the
+    /// energies, which hold both phases).
+    double                water_mass = 0;
+    Tensor<1, dim>        water_momentum;
+    double                mean_pore_pressure = 0;
   };
 } // namespace MPM
 

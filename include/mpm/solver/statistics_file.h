@@ -38,12 +38,14 @@ namespace MPM
      * Open @p name: a new file with its header, or, resuming a run, the
      * file cut back to the @p resume_length bytes it had at the
      * checkpoint (the rows the stopped run wrote after it will be written
-     * again) and appended to.
+     * again) and appended to. @p with_pore_water: the water's columns
+     * follow the others (a scene with a saturated material).
      */
     void
     open(const std::string  &name,
          const bool          resume,
-         const std::uint64_t resume_length);
+         const std::uint64_t resume_length,
+         const bool          with_pore_water);
 
     bool
     is_open() const
@@ -70,8 +72,10 @@ namespace MPM
     };
 
     /// The columns, in their order in the file.
-    static std::vector<Column>
-    columns();
+    std::vector<Column>
+    columns() const;
+
+    bool with_pore_water = false;
 
     /// Mutable: its write position is read by length().
     mutable std::ofstream file;
