@@ -222,9 +222,21 @@ namespace MPM
     std::vector<DataComponentInterpretation::DataComponentInterpretation>
       interpretation(property_names.size(),
                      DataComponentInterpretation::component_is_scalar);
-    for (unsigned int i = 0; i < property_names.size(); ++i)
-      if (property_names[i] == "velocity")
-        interpretation[i] = DataComponentInterpretation::component_is_part_of_vector;
+    // A name given to dim consecutive properties is a vector (velocity,
+    // the pore water's water_velocity): ParaView then shows one vector
+    // field with its magnitude, not dim scalars of the same name.
+    for (unsigned int i = 0; i + dim <= property_names.size();)
+      {
+        unsigned int run = 1;
+        while (i + run < property_names.size() &&
+               property_names[i + run] == property_names[i])
+          ++run;
+        if (run == dim)
+          for (unsigned int c = 0; c < dim; ++c)
+            interpretation[i + c] =
+              DataComponentInterpretation::component_is_part_of_vector;
+        i += run;
+      }
 
     Particles::DataOut<dim> data_out;
     data_out.build_patches(particle_handler, property_names, interpretation);
