@@ -124,7 +124,9 @@ namespace MPM
         first += column.n_components;
         comma = true;
       }
-    file << ". Energies per unit thickness in 2D.\n";
+    file << (dim == 2 ? ". Mass, momentum, energies and removed mass per "
+                        "unit thickness (2D); mean speed not mass-weighted.\n" :
+                        ". Mean speed not mass-weighted.\n");
   }
 
 
