@@ -78,6 +78,27 @@ namespace MPM
   }
 
 
+  namespace
+  {
+    /// The largest squared length of the columns of @p R (the edges of a
+    /// domain's or a cell's affine part).
+    template <int dim>
+    double
+    longest_column2(const Tensor<2, dim> &R)
+    {
+      double longest2 = 0;
+      for (unsigned int b = 0; b < dim; ++b)
+        {
+          double length2 = 0;
+          for (unsigned int a = 0; a < dim; ++a)
+            length2 += R[a][b] * R[a][b];
+          longest2 = std::max(longest2, length2);
+        }
+      return longest2;
+    }
+  } // namespace
+
+
   template <int dim>
   double
   PointDomains<dim>::cell_stretch2(
@@ -93,15 +114,8 @@ namespace MPM
           for (unsigned int a = 0; a < dim; ++a)
             J[a][e] += g * vertices[i][a];
         }
-    double longest2 = 0;
-    for (unsigned int e = 0; e < dim; ++e)
-      {
-        double length2 = 0;
-        for (unsigned int a = 0; a < dim; ++a)
-          length2 += J[a][e] * J[a][e];
-        longest2 = std::max(longest2, length2);
-      }
-    const double det     = std::abs(determinant(J));
+    const double longest2 = longest_column2(J);
+    const double det      = std::abs(determinant(J));
     const double stretch2 = det > 0 ? longest2 / std::pow(det, 2. / dim) : 1.;
     return stretch2 < 1 + 1e-10 ? 1. : stretch2;
   }
@@ -118,14 +132,7 @@ namespace MPM
       deformed[c] = D[c] + dt_grad_v * D[c];
     const Tensor<2, dim> R   = affine_part(deformed);
     const double         det = determinant(R);
-    double               longest2 = 0;
-    for (unsigned int b = 0; b < dim; ++b)
-      {
-        double length2 = 0;
-        for (unsigned int a = 0; a < dim; ++a)
-          length2 += R[a][b] * R[a][b];
-        longest2 = std::max(longest2, length2);
-      }
+    const double         longest2 = longest_column2(R);
     // longest^2 <= limit^2 side^2 with side^2 = |det|^(2/dim), in 3D
     // compared cubed (longest^6 <= limit^6 det^2): no pow() for the
     // domains within the limit, nearly all of them (pow() was 2 % of a
