@@ -52,6 +52,12 @@ namespace MPM
     boundary_conditions.set_gravity(time_stepping.gravity);
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
+    if (!pore_water.active())
+      for (const std::string &name : boundary_conditions.pore_pressure_boundaries())
+        throw InputError("Boundary conditions/" + name +
+                         "/Pore pressure is set, but no material is "
+                         "saturated (Porosity > 0): there is no pore water "
+                         "for it to act on.");
 
     setup_nodal_fields();
 

@@ -283,6 +283,17 @@ namespace MPM
                    const double            dt,
                    const PoreWaterAtNodes *water = nullptr);
 
+    /// The names of the boundaries with a 'Pore pressure'.
+    std::vector<std::string>
+    pore_pressure_boundaries() const
+    {
+      std::vector<std::string> names;
+      for (const auto &s : specs)
+        if (!s.pore_pressure.empty())
+          names.push_back(s.name);
+      return names;
+    }
+
     /**
      * The nodal forces of the boundaries' prescribed pore pressures at
      * time @p time (BoundaryPorePressures), or nullptr if no boundary has
