@@ -235,6 +235,12 @@ namespace MPM
                          const double                     local_damping)
   {
     const double dt = time_step;
+    // Cundall's local damping at node i for the unbalanced force @p f:
+    // alpha |f| against the skeleton's motion.
+    const auto damping_force = [&](const unsigned int i, const double f) {
+      const double v = nodal.velocity.local_element(i);
+      return local_damping * std::abs(f) * (v > 0 ? 1. : v < 0 ? -1. : 0.);
+    };
     for (const unsigned int i : active_dofs)
       {
         const double m_w = mass.local_element(i);
@@ -246,6 +252,11 @@ namespace MPM
           {
             velocity.local_element(i)     = 0;
             velocity_new.local_element(i) = 0;
+            // A node of dry material only: damped as in a dry scene (the
+            // dry nodal update damps no node when there is pore water).
+            if (local_damping > 0 && m_s > 0)
+              nodal.force.local_element(i) -=
+                damping_force(i, nodal.force.local_element(i));
             continue;
           }
         if (boundary_forces != nullptr)
@@ -270,10 +281,8 @@ namespace MPM
             // let it move against its water: under undrained loading the
             // points' pore pressures then split from their effective
             // stresses cell by cell (3 % of the pressure).
-            const double v    = nodal.velocity.local_element(i);
-            const double sign = v > 0 ? 1. : v < 0 ? -1. : 0.;
             const double damping =
-              local_damping * std::abs(F_s + force.local_element(i)) * sign;
+              damping_force(i, F_s + force.local_element(i));
             F_s -= damping * m_s / (m_s + m_w);
             force.local_element(i) -= damping * m_w / (m_s + m_w);
           }

@@ -161,7 +161,8 @@ namespace MPM
      * the forces of the boundaries' prescribed pore pressures
      * (BoundaryPorePressures), shared by the phases as the nodal porosity
      * says. @p local_damping: Cundall's coefficient alpha, applied here
-     * to the mixture (the dry nodal update then damps no more). After
+     * to the mixture, and to the skeleton alone at nodes without water
+     * (the dry nodal update then damps no more). After
      * map_phase() with this kernel.
      */
     void
