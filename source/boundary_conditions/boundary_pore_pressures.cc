@@ -95,22 +95,23 @@ namespace MPM
           const types::boundary_id  id,
           const FEFaceValues<dim>  &face_values) {
         for (unsigned int q = 0; q < face_values.n_quadrature_points; ++q)
-          for (unsigned int v = 0; v < cell->face(f)->n_vertices(); ++v)
-            {
-              const unsigned int cell_vertex =
-                GeometryInfo<dim>::face_to_cell_vertices(f, v);
-              FacePoint point;
-              point.boundary = function_of(id);
-              point.x = grid.to_scene_frame(face_values.quadrature_point(q));
-              for (unsigned int c = 0; c < dim; ++c)
-                point.dofs[c] = cell->vertex_dof_index(cell_vertex, c);
-              point.weight =
-                face_values.shape_value(vertex_shape_function(grid,
-                                                              cell_vertex),
-                                        q) *
-                face_values.JxW(q) * face_values.normal_vector(q);
-              face_points.push_back(point);
-            }
+          {
+            FacePoint point;
+            point.boundary = function_of(id);
+            point.x = grid.to_scene_frame(face_values.quadrature_point(q));
+            for (unsigned int v = 0; v < vertices_per_face; ++v)
+              {
+                const unsigned int cell_vertex =
+                  GeometryInfo<dim>::face_to_cell_vertices(f, v);
+                for (unsigned int c = 0; c < dim; ++c)
+                  point.dofs[v][c] = cell->vertex_dof_index(cell_vertex, c);
+                point.weight[v] =
+                  face_values.shape_value(
+                    vertex_shape_function(grid, cell_vertex), q) *
+                  face_values.JxW(q) * face_values.normal_vector(q);
+              }
+            face_points.push_back(point);
+          }
       });
     nodal_force.reinit(layout);
     assemble(0);
@@ -126,9 +127,11 @@ namespace MPM
     nodal_force = 0;
     for (const FacePoint &point : face_points)
       {
+        // Once per quadrature point.
         const double p = functions[point.boundary]->value(point.x);
-        for (unsigned int c = 0; c < dim; ++c)
-          nodal_force(point.dofs[c]) -= p * point.weight[c];
+        for (unsigned int v = 0; v < vertices_per_face; ++v)
+          for (unsigned int c = 0; c < dim; ++c)
+            nodal_force(point.dofs[v][c]) -= p * point.weight[v][c];
       }
     nodal_force.compress(VectorOperation::add);
     nodal_force.update_ghost_values();

@@ -66,17 +66,22 @@ namespace MPM
     forces_at(const double time);
 
   private:
-    /// One face quadrature point's contribution to one vertex.
+    static constexpr unsigned int vertices_per_face =
+      GeometryInfo<dim>::vertices_per_face;
+
+    /// One face quadrature point: where p_b is evaluated, and what it
+    /// gives the face's vertices.
     struct FacePoint
     {
       /// Index into functions.
       unsigned int boundary;
       /// The quadrature point in the scene's frame.
       Point<dim> x;
-      /// The vertex's DoF of each component.
-      std::array<types::global_dof_index, dim> dofs;
-      /// N_v JxW n at the point (mesh frame).
-      Tensor<1, dim> weight;
+      /// Each vertex's DoF of each component.
+      std::array<std::array<types::global_dof_index, dim>, vertices_per_face>
+        dofs;
+      /// Each vertex's N_v JxW n at the point (mesh frame).
+      std::array<Tensor<1, dim>, vertices_per_face> weight;
     };
 
     void
