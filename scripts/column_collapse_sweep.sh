@@ -7,8 +7,8 @@
 # Environment: MPM_CELL_SIZE (m, default 0.005), MPM_SWEEP_NAME (default:
 # the shipped file, written to doc/column_collapse.csv; another name writes
 # doc/column_collapse_NAME.csv). The shipped file runs the default transfer
-# (APIC on CPDI weights; doc/column_collapse.csv predates that and is of the
-# blend); the blend it shipped before:
+# (APIC on CPDI weights); the cheaper FLIP/PIC blend of doc/column_collapse.md,
+# "Other transfers":
 #   MPM_SWEEP_NAME=blend scripts/column_collapse_sweep.sh "0.5 1 2 3 4 6" \
 #     --set "Transfer/Scheme=flip/pic blend" --set "Transfer/FLIP fraction=0.98" \
 #     --set "Transfer/FLIP fraction time step=6e-5" --set "Transfer/Particle-grid weights=linear"

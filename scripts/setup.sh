@@ -27,12 +27,17 @@ mpm_install_packages() {
   fi
 }
 
-# mpm_setup BUILD_TYPE: configure (once) and build build/<build_type lowercase>.
+# mpm_setup BUILD_TYPE [TARGET...]: configure (once) and build the targets
+# (default: mpm, the solver, which every script needs; 'all' adds the unit
+# tests) in build/<build_type lowercase>.
 # With MPM_PREBUILT_DIR set in the environment, that build is used as it is
 # (nothing is built: a long sweep keeps its executable while the sources
 # change).
 mpm_setup() {
   local type="$1"
+  shift
+  local targets=("$@")
+  [ ${#targets[@]} -gt 0 ] || targets=(mpm)
   if [ -n "${MPM_PREBUILT_DIR:-}" ]; then
     [ -x "$MPM_PREBUILT_DIR/mpm" ] || { echo "MPM_PREBUILT_DIR=$MPM_PREBUILT_DIR holds no mpm executable" >&2; exit 1; }
     MPM_BUILD_DIR="$MPM_PREBUILT_DIR"
@@ -43,6 +48,6 @@ mpm_setup() {
   if [ ! -f "$dir/CMakeCache.txt" ]; then
     cmake -S "$MPM_ROOT" -B "$dir" -DCMAKE_BUILD_TYPE="$type"
   fi
-  cmake --build "$dir" -j2
+  cmake --build "$dir" -j2 --target "${targets[@]}"
   MPM_BUILD_DIR="$dir"
 }

@@ -1,5 +1,6 @@
 #include <mpm/base/input_error.h>
 #include <mpm/base/plugin_registry.h>
+#include <mpm/base/units.h>
 #include <mpm/materials/drucker_prager.h>
 #include <mpm/materials/frictional_strength.h>
 
@@ -13,19 +14,8 @@ namespace MPM
   {
     namespace
     {
-      constexpr double degree = M_PI / 180.;
-
-      /**
-       * Relative tolerance of the yield check, as in MohrCoulomb: far above
-       * the rounding of the invariants (a few eps times the stress), so
-       * that a returned stress is recognised as admissible and a second
-       * return with a zero increment leaves it untouched; far below
-       * anything physical.
-       */
-      constexpr double relative_tolerance = 1e-10;
-
       std::string
-      name_of(const std::string &entry)
+      drucker_prager_parameter(const std::string &entry)
       {
         return "drucker prager/" + entry;
       }
@@ -110,7 +100,7 @@ namespace MPM
                                {{"compression", Fit::compression},
                                 {"extension", Fit::extension},
                                 {"plane strain", Fit::plane_strain}},
-                               name_of("Fit to Mohr-Coulomb"));
+                               drucker_prager_parameter("Fit to Mohr-Coulomb"));
       check_frictional_strength("drucker prager",
                                 phi_degrees,
                                 psi_degrees,
@@ -165,7 +155,7 @@ namespace MPM
       const double root = root_j2;
       const double f    = root + eta * mean - xi_c;
       const double tol =
-        relative_tolerance * (std::abs(mean) + root + xi_c);
+        yield_relative_tolerance * (std::abs(mean) + root + xi_c);
       if (f <= tol && mean <= tension_cutoff + tol)
         return Return::elastic;
 

@@ -38,7 +38,7 @@ namespace MPM
       constexpr unsigned int max_substeps = 4096;
 
       std::string
-      name_of(const std::string &entry)
+      cam_clay_parameter(const std::string &entry)
       {
         return "modified cam clay/" + entry;
       }
@@ -135,31 +135,31 @@ namespace MPM
       minimum_pressure = prm.get_double("Minimum pressure");
 
       check_input(M > 0,
-                  name_of("Slope of critical state line") + " = " +
+                  cam_clay_parameter("Slope of critical state line") + " = " +
                     number(M) + ": must be > 0.");
       check_input(kappa > 0,
-                  name_of("Kappa") + " = " + number(kappa) +
+                  cam_clay_parameter("Kappa") + " = " + number(kappa) +
                     ": must be > 0.");
       check_input(lambda > kappa,
-                  name_of("Lambda") + " = " + number(lambda) +
+                  cam_clay_parameter("Lambda") + " = " + number(lambda) +
                     ": must be larger than Kappa = " + number(kappa) +
                     " (lambda - kappa is the plastic part of the "
                     "compression; the hardening divides by it).");
       check_input(initial_void_ratio > 0,
-                  name_of("Initial void ratio") + " = " +
+                  cam_clay_parameter("Initial void ratio") + " = " +
                     number(initial_void_ratio) + ": must be > 0.");
       check_input(initial_preconsolidation_pressure > 0,
-                  name_of("Initial preconsolidation pressure") + " = " +
-                    number(initial_preconsolidation_pressure) +
+                  cam_clay_parameter("Initial preconsolidation pressure") +
+                    " = " + number(initial_preconsolidation_pressure) +
                     " Pa: must be > 0.");
       check_input(poisson_ratio > -1 && poisson_ratio < 0.5,
-                  name_of("Poisson's ratio") + " = " + number(poisson_ratio) +
-                    ": must lie in (-1, 0.5).");
+                  cam_clay_parameter("Poisson's ratio") + " = " +
+                    number(poisson_ratio) + ": must lie in (-1, 0.5).");
       check_input(!constant_shear_modulus || constant_G > 0,
-                  name_of("Shear modulus") + " = " + number(constant_G) +
-                    " Pa: must be > 0.");
+                  cam_clay_parameter("Shear modulus") + " = " +
+                    number(constant_G) + " Pa: must be > 0.");
       check_input(minimum_pressure > 0,
-                  name_of("Minimum pressure") + " = " +
+                  cam_clay_parameter("Minimum pressure") + " = " +
                     number(minimum_pressure) + " Pa: must be > 0.");
     }
 

@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/base/units.h>
 #include <mpm/materials/frictional_strength.h>
 #include <mpm/materials/mohr_coulomb.h>
 #include <mpm/materials/principal_stresses.h>
@@ -14,17 +15,6 @@ namespace MPM
   {
     namespace
     {
-      constexpr double degree = M_PI / 180.;
-
-      /**
-       * Relative tolerance of the yield check and of the acceptance tests
-       * of a candidate return. Far above the rounding of the spectral
-       * decomposition (a few eps times the stress), so that a returned
-       * stress is recognised as admissible and a second return with a zero
-       * increment leaves it untouched; far below anything physical.
-       */
-      constexpr double relative_tolerance = 1e-10;
-
       /**
        * sqrt(2/3 |dev(ds)|^2) of principal values @p ds. Times 1 / (2 G)
        * it is the equivalent plastic shear strain of a stress change ds
@@ -42,7 +32,7 @@ namespace MPM
       }
 
       std::string
-      name_of(const std::string &entry)
+      mohr_coulomb_parameter(const std::string &entry)
       {
         return "mohr coulomb/" + entry;
       }
@@ -228,7 +218,7 @@ namespace MPM
       if (softening)
         {
           const auto entry = [](const std::string &e) {
-            return name_of("Strain softening/" + e);
+            return mohr_coulomb_parameter("Strain softening/" + e);
           };
           const double phi_r = prm.get_double("Residual friction angle");
           const double psi_r = prm.get_double("Residual dilation angle");
@@ -558,7 +548,7 @@ namespace MPM
                                      std::abs(s[2]),
                                      surfaces.bound[0],
                                      surfaces.bound[3]});
-      const double tol = relative_tolerance * scale;
+      const double tol = yield_relative_tolerance * scale;
 
       std::array<double, 6> f_trial;
       bool                  elastic = true;
@@ -642,7 +632,7 @@ namespace MPM
       const double tension_cutoff = strength.tension_cutoff;
       const double scale          = std::max(
         {std::abs(s[0]), std::abs(s[1]), std::abs(s[2]), k, tension_cutoff});
-      const double tol = relative_tolerance * scale;
+      const double tol = yield_relative_tolerance * scale;
       const std::array<std::array<double, 3>, 3> shear{
         {{{1 + sin_phi, 0, -(1 - sin_phi)}},
          {{1 + sin_phi, -(1 - sin_phi), 0}},

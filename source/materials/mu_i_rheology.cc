@@ -1,4 +1,5 @@
 #include <mpm/base/input_error.h>
+#include <mpm/base/units.h>
 #include <mpm/materials/mu_i_rheology.h>
 
 #include <cmath>
@@ -9,10 +10,8 @@ namespace MPM
   {
     namespace
     {
-      constexpr double degree = M_PI / 180.;
-
       std::string
-      name_of(const std::string &entry)
+      mu_i_parameter(const std::string &entry)
       {
         return "mu(I)/" + entry;
       }
@@ -59,10 +58,10 @@ namespace MPM
       const double phi_s = prm.get_double("Static friction angle");
       const double phi_2 = prm.get_double("Dynamic friction angle");
       check_input(phi_s > 0 && phi_s < 90,
-                  name_of("Static friction angle") + " = " +
+                  mu_i_parameter("Static friction angle") + " = " +
                     std::to_string(phi_s) + " degrees: must lie in (0, 90).");
       check_input(phi_2 >= phi_s && phi_2 < 90,
-                  name_of("Dynamic friction angle") + " = " +
+                  mu_i_parameter("Dynamic friction angle") + " = " +
                     std::to_string(phi_2) +
                     " degrees: must lie in [static friction angle = " +
                     std::to_string(phi_s) + ", 90).");
@@ -72,16 +71,15 @@ namespace MPM
       grain_diameter            = prm.get_double("Grain diameter");
       grain_density             = prm.get_double("Grain density");
       check_input(reference_inertial_number > 0,
-                  name_of("Reference inertial number") + " = " +
+                  mu_i_parameter("Reference inertial number") + " = " +
                     std::to_string(reference_inertial_number) +
                     ": must be > 0.");
       check_input(grain_diameter > 0,
-                  name_of("Grain diameter") + " = " +
+                  mu_i_parameter("Grain diameter") + " = " +
                     std::to_string(grain_diameter) + " m: must be > 0.");
       check_input(grain_density > 0,
-                  name_of("Grain density") + " = " +
-                    std::to_string(grain_density) +
-                    " kg/m^3: must be > 0.");
+                  mu_i_parameter("Grain density") + " = " +
+                    std::to_string(grain_density) + " kg/m^3: must be > 0.");
     }
 
 

@@ -192,6 +192,17 @@ namespace MPM
   }
 
 
-  template class Simulator<2>;
-  template class Simulator<3>;
+  // The members defined here (the class itself is instantiated in
+  // simulator.cc): one explicit instantiation per member, so that
+  // the Simulator's files can share one translation unit (unity
+  // build) without instantiating the class twice.
+#define MPM_INSTANTIATE(dim)                                                   \
+  template std::string Simulator<dim>::serialize_state() const;                \
+  template void        Simulator<dim>::deserialize_state(const std::string &); \
+  template void        Simulator<dim>::write_checkpoint();                     \
+  template void        Simulator<dim>::repartition();
+
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace MPM

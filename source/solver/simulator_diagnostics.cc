@@ -311,6 +311,26 @@ namespace MPM
   }
 
 
-  template class Simulator<2>;
-  template class Simulator<3>;
+  // The members defined here (the class itself is instantiated in
+  // simulator.cc): one explicit instantiation per member, so that
+  // the Simulator's files can share one translation unit (unity
+  // build) without instantiating the class twice.
+#define MPM_INSTANTIATE(dim)                                                 \
+  template void   Simulator<dim>::set_max_point_speed(const double);         \
+  template double Simulator<dim>::point_speed(const RestCriterion::Measure)  \
+    const;                                                                   \
+  template double Simulator<dim>::compute_max_state_wave_speed() const;      \
+  template void   Simulator<dim>::stop_on_blow_up(const std::string &,       \
+                                                const bool);               \
+  template GlobalStatistics<dim> Simulator<dim>::compute_statistics() const; \
+  template Tensor<1, dim>        Simulator<dim>::wrapped_mass_shift() const; \
+  template std::array<double, 3> Simulator<dim>::energy_of_point(            \
+    const double *, const Point<dim> &) const;                               \
+  template std::pair<Tensor<1, 3>, double>                                   \
+  Simulator<dim>::spin_angular_momentum(const Point<dim> &,                  \
+                                        const Tensor<1, dim> &) const;
+
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace MPM

@@ -139,6 +139,22 @@ namespace MPM
   }
 
 
-  template class Simulator<2>;
-  template class Simulator<3>;
+  // The members defined here (the class itself is instantiated in
+  // simulator.cc): one explicit instantiation per member, so that
+  // the Simulator's files can share one translation unit (unity
+  // build) without instantiating the class twice.
+#define MPM_INSTANTIATE(dim)                                                   \
+  template void Simulator<dim>::declare_name_lists(ParameterHandler &);        \
+  template typename Simulator<dim>::NameLists Simulator<dim>::read_name_lists( \
+    ParameterHandler &);                                                       \
+  template void Simulator<dim>::declare_parameters(ParameterHandler &,         \
+                                                   const NameLists &);         \
+  template void Simulator<dim>::parse_parameters(ParameterHandler &,           \
+                                                 const std::string &);         \
+  template std::vector<std::string> Simulator<dim>::state_variable_names()     \
+    const;
+
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace MPM

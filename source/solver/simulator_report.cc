@@ -110,6 +110,17 @@ namespace MPM
   }
 
 
-  template class Simulator<2>;
-  template class Simulator<3>;
+  // The members defined here (the class itself is instantiated in
+  // simulator.cc): one explicit instantiation per member, so that
+  // the Simulator's files can share one translation unit (unity
+  // build) without instantiating the class twice.
+#define MPM_INSTANTIATE(dim)                                    \
+  template void Simulator<dim>::write_report() const;           \
+  template void Simulator<dim>::print_run_summary(const double, \
+                                                  const double, \
+                                                  const unsigned int) const;
+
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace MPM

@@ -14,6 +14,17 @@ namespace MPM
   namespace MaterialModels
   {
     /**
+     * Relative tolerance of the frictional models' yield checks (and of
+     * Mohr-Coulomb's acceptance tests of a candidate return): far above
+     * the rounding of the invariants or of the spectral decomposition (a
+     * few eps times the stress), so that a returned stress is recognised
+     * as admissible and a second return with a zero increment leaves it
+     * untouched; far below anything physical.
+     */
+    constexpr double yield_relative_tolerance = 1e-10;
+
+
+    /**
      * The input checks of the Mohr-Coulomb strength parameters, which every
      * frictional model reads ('mohr coulomb', 'drucker prager'): friction
      * angle phi in (0, 90) degrees, dilation angle psi in [0, phi],

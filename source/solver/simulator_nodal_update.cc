@@ -32,7 +32,7 @@ namespace MPM
   Simulator<dim>::update_nodal_kinematics()
   {
     TimerOutput::Scope t(timer, "nodal update");
-    const double       dt    = time_step;
+    const double       dt = time_step;
     // Cundall's local damping (with pore water, on the mixture inside
     // PoreWater::couple()).
     const double alpha =
@@ -93,7 +93,7 @@ namespace MPM
                                          dt);
     for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) +=
-      dt * nodal.acceleration.local_element(i);
+        dt * nodal.acceleration.local_element(i);
     });
     boundary_conditions.constrain_updated_velocity(nodal.velocity_new);
     if (pore_water.active())
@@ -105,7 +105,7 @@ namespace MPM
     // constraints too.
     for_each_active_dof([&](const unsigned int i) {
       nodal.acceleration.local_element(i) =
-      (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
+        (nodal.velocity_new.local_element(i) - brought_velocity(i)) / dt;
     });
   }
 
@@ -129,6 +129,15 @@ namespace MPM
   }
 
 
-  template class Simulator<2>;
-  template class Simulator<3>;
+  // The members defined here (the class itself is instantiated in
+  // simulator.cc): one explicit instantiation per member, so that
+  // the Simulator's files can share one translation unit (unity
+  // build) without instantiating the class twice.
+#define MPM_INSTANTIATE(dim)                                           \
+  template void Simulator<dim>::compute_nodal_velocity(NodalVector &); \
+  template void Simulator<dim>::update_nodal_kinematics();
+
+  MPM_INSTANTIATE(2)
+  MPM_INSTANTIATE(3)
+#undef MPM_INSTANTIATE
 } // namespace MPM

@@ -1,0 +1,13 @@
+#pragma once
+
+#include <cmath>
+
+namespace MPM
+{
+  /**
+   * One degree in radians: parameters give angles in degrees (as
+   * geotechnical data do), the code works in radians. Multiply by it:
+   * `phi_degrees * degree`.
+   */
+  constexpr double degree = M_PI / 180.;
+} // namespace MPM
