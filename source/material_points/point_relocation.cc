@@ -527,6 +527,18 @@ namespace MPM
 
   template <int dim>
   void
+  PointRelocation<dim>::prepare_for_checkpoint(
+    Particles::ParticleHandler<dim> &particle_handler)
+  {
+    reorder_storage(particle_handler);
+    // clear_particles() and insert_particle() leave deal.II's local count
+    // to be recounted (as after the reordering in relocate_leavers()).
+    particle_handler.update_cached_numbers();
+  }
+
+
+  template <int dim>
+  void
   PointRelocation<dim>::reorder_storage(
     Particles::ParticleHandler<dim> &particle_handler)
   {

@@ -155,7 +155,8 @@ namespace MPM
   Simulator<dim>::write_checkpoint()
   {
     TimerOutput::Scope t(timer, "checkpoint");
-    const auto        start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
+    point_relocation.prepare_for_checkpoint(particle_handler);
     const std::size_t bytes =
       checkpointing.write(grid.triangulation, particle_handler, serialize_state());
     pcout << "Checkpoint at step " << step << ", t = " << time << " s: "

@@ -103,6 +103,21 @@ namespace MPM
     void
     relocate(Particles::ParticleHandler<dim> &particle_handler);
 
+    /**
+     * Put the storage in the order a restart reads it back (cell by cell,
+     * reorder_storage()) and start counting the moved points afresh, as a
+     * restart does. Called before a checkpoint is written: the order of
+     * the points decides the order of the sums of every pass, and deal.II
+     * keeps the cells in the order in which they received their first
+     * point since the last rebuild of its list, which a restart does not
+     * reproduce. So the run that wrote the checkpoint and a run resumed
+     * from it continue with the same storage and the same reordering
+     * steps: bit-identical (a run without checkpoints differs from both at
+     * round-off).
+     */
+    void
+    prepare_for_checkpoint(Particles::ParticleHandler<dim> &particle_handler);
+
     using ParticleIterator =
       typename Particles::ParticleHandler<dim>::particle_iterator;
 
