@@ -3,8 +3,9 @@
 # (doc/transfers.md): the USGS flume (peak mean speed and its time, time to
 # rest, final front) and the column collapse at a = 2 (runout against
 # Lube et al. 2005, time to rest), each with the wall time on one core.
-# Every scheme on linear weights (the rows of doc/transfers.md's first
-# table), and the default, APIC on CPDI weights, last.
+# Every scheme on linear weights (the rows of doc/transfers.md, "The flume
+# and the collapse at a = 2, per scheme on linear weights"), and the
+# default, APIC on CPDI weights, last.
 # Usage: scripts/transfer_comparison.sh [output folder]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
