@@ -104,16 +104,18 @@ namespace MPM
     relocate(Particles::ParticleHandler<dim> &particle_handler);
 
     /**
-     * Put the storage in the order a restart reads it back (cell by cell,
-     * reorder_storage()) and start counting the moved points afresh, as a
-     * restart does. Called before a checkpoint is written: the order of
-     * the points decides the order of the sums of every pass, and deal.II
-     * keeps the cells in the order in which they received their first
-     * point since the last rebuild of its list, which a restart does not
-     * reproduce. So the run that wrote the checkpoint and a run resumed
-     * from it continue with the same storage and the same reordering
-     * steps: bit-identical (a run without checkpoints differs from both at
-     * round-off).
+     * Rebuild the storage (reorder_storage()) and start counting the moved
+     * points afresh, as a restart does. Called before a checkpoint is
+     * written: the order of the points decides the order of the sums of
+     * every pass, and it depends on the storage's history (deal.II
+     * appends a cell that receives its first point at the end of its list;
+     * the reorderings come every reorder_fraction of the points moved, a
+     * count that is not checkpointed). Without this a resumed run
+     * reordered at other steps than the run through and differed at
+     * round-off; with it both continue from the same storage and reorder
+     * at the same steps: bit-identical (test
+     * landslide_valley_3d_short_resume_identical). A run without
+     * checkpoints differs from both at round-off.
      */
     void
     prepare_for_checkpoint(Particles::ParticleHandler<dim> &particle_handler);
