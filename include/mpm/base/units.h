@@ -1,4 +1,5 @@
-#pragma once
+#ifndef mpm_base_units_h
+#define mpm_base_units_h
 
 #include <cmath>
 
@@ -11,3 +12,5 @@ namespace MPM
    */
   constexpr double degree = M_PI / 180.;
 } // namespace MPM
+
+#endif

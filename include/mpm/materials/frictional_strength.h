@@ -2,6 +2,7 @@
 #define mpm_materials_frictional_strength_h
 
 #include <mpm/base/input_error.h>
+#include <mpm/base/units.h>
 #include <mpm/materials/material_model.h>
 
 #include <algorithm>
@@ -58,7 +59,7 @@ namespace MPM
       check_input(cohesion >= 0,
                   name_of("Cohesion") + " = " + std::to_string(cohesion) +
                     " Pa: must be >= 0.");
-      const double apex = cohesion / std::tan(phi_degrees * (M_PI / 180.));
+      const double apex = cohesion / std::tan(phi_degrees * degree);
       check_input(
         tension_cutoff >= 0 && tension_cutoff <= apex * (1 + 1e-6) + 1e-12,
         name_of("Tension cutoff") + " = " + std::to_string(tension_cutoff) +
