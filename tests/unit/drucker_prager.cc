@@ -30,12 +30,12 @@
 #include <sstream>
 #include <string>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialModels::DruckerPrager;
-
-namespace
+namespace unit_drucker_prager
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialModels::DruckerPrager;
+
   constexpr double degree = M_PI / 180;
 
   struct Parameters
@@ -187,9 +187,8 @@ namespace
           const double       tolerance)
   {
     const double e = relative(value, reference);
-    std::cout << "    " << what << " = " << value << ", reference "
-              << reference << ", relative error " << flush_to_zero(e, 1e-12)
-              << '\n';
+    std::cout << "    " << what << " = " << value << ", reference " << reference
+              << ", relative error " << flush_to_zero(e, 1e-12) << '\n';
     std::ostringstream tol;
     tol << tolerance;
     check(std::abs(e) <= tolerance, what + " (|error| <= " + tol.str() + ")");
@@ -257,17 +256,16 @@ namespace
     // at c cot(phi) for every fit. Tolerance 1e-14: two roundings apart.
     for (const std::string fit : {"compression", "extension", "plane strain"})
       {
-        p.fit = fit;
-        p.psi = 10;
-        m     = make_model(p);
+        p.fit                = fit;
+        p.psi                = 10;
+        m                    = make_model(p);
         const auto [eta, xi] = fit_coefficients(fit, 30);
         const double eta_bar = fit_coefficients(fit, 10).first;
         const double e =
           std::max({std::abs(relative(m->friction_coefficient(), eta)),
                     std::abs(relative(m->cohesion_coefficient(), xi)),
                     std::abs(relative(m->dilation_coefficient(), eta_bar))});
-        const double apex =
-          m->cohesion_intercept() / m->friction_coefficient();
+        const double apex = m->cohesion_intercept() / m->friction_coefficient();
         const double e_apex = relative(apex, 1e4 / std::tan(30 * degree));
         std::cout << "    " << fit << " (phi 30, psi 10): eta = " << eta
                   << ", xi = " << xi << ", eta_bar = " << eta_bar
@@ -352,7 +350,7 @@ namespace
         const auto        model = make_model(p);
         const auto [eta, xi]    = fit_coefficients(p.fit, p.phi);
         const double eta_bar    = fit_coefficients(p.fit, p.psi).first;
-        const double T = std::min(p.T, xi * p.c / eta);
+        const double T          = std::min(p.T, xi * p.c / eta);
         for (unsigned int n = 0; n < 5000; ++n)
           {
             SymmetricTensor<2, 3> trial;
@@ -373,11 +371,10 @@ namespace
             max_f   = std::max(max_f, yield(stress, p) / scale);
             max_cap = std::max(max_cap, (mean(stress) - T) / scale);
 
-            SymmetricTensor<2, 3> again = stress;
+            SymmetricTensor<2, 3> again       = stress;
             const double          shear_again = return_stress(*model, again);
-            max_second = std::max({max_second,
-                                   max_abs(again - stress) / scale,
-                                   shear_again});
+            max_second                        = std::max(
+              {max_second, max_abs(again - stress) / scale, shear_again});
             if (r == DruckerPrager::Return::elastic)
               {
                 max_second = std::max(max_second, max_abs(stress - trial));
@@ -387,24 +384,24 @@ namespace
             // On the boundary of the admissible set.
             const double on_cone = std::abs(yield(stress, p)) / scale;
             const double on_cap  = std::abs(mean(stress) - T) / scale;
-            max_surface = std::max(
-              max_surface,
-              r == DruckerPrager::Return::cone        ? on_cone :
-              r == DruckerPrager::Return::tension_cap ? on_cap :
-                                                        std::max(on_cone, on_cap));
+            max_surface          = std::max(max_surface,
+                                   r == DruckerPrager::Return::cone ?
+                                              on_cone :
+                                            r == DruckerPrager::Return::tension_cap ?
+                                              on_cap :
+                                              std::max(on_cone, on_cap));
 
-            const SymmetricTensor<2, 3> change = trial - stress;
+            const SymmetricTensor<2, 3> change  = trial - stress;
             const SymmetricTensor<2, 3> s_trial = deviator(trial),
                                         s       = deviator(stress);
             // s = alpha s_trial with alpha in [0, 1].
             const double s_trial_2 = scalar_product(s_trial, s_trial);
             const double alpha =
               s_trial_2 > 0 ? scalar_product(s, s_trial) / s_trial_2 : 0.;
-            max_coaxial =
-              std::max({max_coaxial,
-                        max_abs(s - alpha * s_trial) / scale,
-                        std::max(0., alpha - 1),
-                        std::max(0., -alpha)});
+            max_coaxial = std::max({max_coaxial,
+                                    max_abs(s - alpha * s_trial) / scale,
+                                    std::max(0., alpha - 1),
+                                    std::max(0., -alpha)});
             // Multipliers from the change: the cone's from the deviatoric
             // part, dgamma = (sqrt(J2_trial) - sqrt(J2)) / G; the
             // volumetric plastic strain dm / K is eta_bar dgamma from the
@@ -425,9 +422,9 @@ namespace
             const double                shear_reference =
               std::sqrt(2. / 3. * scalar_product(dev_change, dev_change)) /
               (2 * p.G());
-            max_shear = std::max(max_shear,
-                                 std::abs(shear - shear_reference) /
-                                   strain_scale);
+            max_shear =
+              std::max(max_shear,
+                       std::abs(shear - shear_reference) / strain_scale);
           }
       }
     // Tolerances: 1e-10 relative to the largest trial stress component,
@@ -435,9 +432,11 @@ namespace
     std::cout << "    max f / scale = " << flush_to_zero(max_f)
               << ", max (sigma_m - T) / scale = " << flush_to_zero(max_cap)
               << " (<= 1e-10 required)\n";
-    check(max_f <= 1e-10 && max_cap <= 1e-10, "all returned stresses admissible");
-    std::cout << "    max distance of a plastic return from its surface / scale = "
-              << flush_to_zero(max_surface) << " (<= 1e-10)\n";
+    check(max_f <= 1e-10 && max_cap <= 1e-10,
+          "all returned stresses admissible");
+    std::cout
+      << "    max distance of a plastic return from its surface / scale = "
+      << flush_to_zero(max_surface) << " (<= 1e-10)\n";
     check(max_surface <= 1e-10, "plastic returns end on the active surface");
     std::cout << "    max |dev(sigma) - alpha dev(sigma_trial)| / scale, alpha "
                  "outside [0, 1] = "
@@ -477,11 +476,11 @@ namespace
   test_apex()
   {
     std::cout << "(3) apex and tension cap\n";
-    Parameters sand;
-    const auto model = make_model(sand);
-    SymmetricTensor<2, 3> a = diagonal(1e4, 5e3, -2e3);
-    a[0][1]                 = 3e3;
-    a[1][2]                 = -1e3;
+    Parameters            sand;
+    const auto            model          = make_model(sand);
+    SymmetricTensor<2, 3> a              = diagonal(1e4, 5e3, -2e3);
+    a[0][1]                              = 3e3;
+    a[1][2]                              = -1e3;
     const SymmetricTensor<2, 3> trials[] = {a,
                                             diagonal(1e4, 1e4, 1e4),
                                             diagonal(5e4, -1e3, -1e3)};
@@ -507,20 +506,19 @@ namespace
     check(max_abs(stress) == 0, "exactly zero stress");
 
     // Cohesive, T at the apex: the apex stress c cot(phi) I.
-    Parameters p = sand;
-    p.c          = 1e4;
-    p.T          = 1e4 / std::tan(30 * degree);
-    p.psi        = 20;
+    Parameters p        = sand;
+    p.c                 = 1e4;
+    p.T                 = 1e4 / std::tan(30 * degree);
+    p.psi               = 20;
     const auto cohesive = make_model(p);
-    stress = 1e5 * unit_symmetric_tensor<3>() + a;
+    stress              = 1e5 * unit_symmetric_tensor<3>() + a;
     const auto r        = case_of(*cohesive, stress);
     return_stress(*cohesive, stress);
     const double apex = p.c / std::tan(30 * degree);
-    const double e =
-      max_abs(stress - apex * unit_symmetric_tensor<3>()) / apex;
+    const double e = max_abs(stress - apex * unit_symmetric_tensor<3>()) / apex;
     std::cout << "    c = 10 kPa, T = c cot(phi) (" << case_name(r)
-              << "): sigma_xx = " << stress[0][0] << ", sigma_xy = "
-              << flush_to_zero(stress[0][1], 1e-9 * apex)
+              << "): sigma_xx = " << stress[0][0]
+              << ", sigma_xy = " << flush_to_zero(stress[0][1], 1e-9 * apex)
               << ", reference apex c cot(phi) = " << apex
               << ", max relative error " << flush_to_zero(e, 1e-14) << '\n';
     check(r == DruckerPrager::Return::cap_edge && e <= 1e-14,
@@ -528,17 +526,17 @@ namespace
 
     // T below the apex: the cap keeps the deviator, the edge shrinks it to
     // xi c - eta T.
-    p.T                 = 5e3;
-    const auto capped   = make_model(p);
-    const auto [eta, xi] = fit_coefficients(p.fit, p.phi);
+    p.T                         = 5e3;
+    const auto capped           = make_model(p);
+    const auto [eta, xi]        = fit_coefficients(p.fit, p.phi);
     SymmetricTensor<2, 3> small = diagonal(3e4, 2.8e4, 2.9e4);
     small[0][1]                 = 500;
     SymmetricTensor<2, 3> trial = small;
     auto                  rc    = case_of(*capped, small);
-    double added = return_stress(*capped, small);
-    const double e_cap = std::max(
-      std::abs(relative(mean(small), p.T)),
-      max_abs(deviator(small) - deviator(trial)) / p.T);
+    double                added = return_stress(*capped, small);
+    const double          e_cap =
+      std::max(std::abs(relative(mean(small), p.T)),
+               max_abs(deviator(small) - deviator(trial)) / p.T);
     std::cout << "    c = 10 kPa, T = 5 kPa, small deviator (" << case_name(rc)
               << "): sigma_m = " << mean(small)
               << ", reference T = 5000; deviator kept; relative error "
@@ -554,9 +552,10 @@ namespace
     const double e_edge = std::max(std::abs(relative(mean(large), p.T)),
                                    std::abs(relative(root_j2(large), edge)));
     std::cout << "    c = 10 kPa, T = 5 kPa, large deviator (" << case_name(rc)
-              << "): sigma_m = " << mean(large) << ", sqrt(J2) = "
-              << root_j2(large) << ", reference T, xi c - eta T = " << edge
-              << "; relative error " << flush_to_zero(e_edge, 1e-14) << '\n';
+              << "): sigma_m = " << mean(large)
+              << ", sqrt(J2) = " << root_j2(large)
+              << ", reference T, xi c - eta T = " << edge << "; relative error "
+              << flush_to_zero(e_edge, 1e-14) << '\n';
     check(rc == DruckerPrager::Return::cap_edge && e_edge <= 1e-14,
           "edge of cone and cap");
   }
@@ -620,7 +619,7 @@ namespace
     for (const double psi : {0., 10.})
       {
         Parameters p;
-        p.psi = psi;
+        p.psi             = psi;
         const auto driver = MPM::MaterialPointDriver::from_text(
           driver_text(p, "drained triaxial", p0, 0.05, 500));
         const auto   history = driver.run_path();
@@ -640,10 +639,9 @@ namespace
         for (const auto &r : records)
           if (r.step < first_plastic)
             {
-              e_elastic = std::max(e_elastic,
-                                   std::abs(r.stress[1][1] -
-                                            (-p0 - p.E * r.path_strain)) /
-                                     p0);
+              e_elastic = std::max(
+                e_elastic,
+                std::abs(r.stress[1][1] - (-p0 - p.E * r.path_strain)) / p0);
               e_volume = std::max(e_volume,
                                   std::abs(r.volumetric_strain +
                                            (1 - 2 * p.nu) * r.path_strain) /
@@ -677,15 +675,19 @@ namespace
           (last.path_strain - mid.path_strain);
         const double ev_reference =
           -(1 - 2 * p.nu) * eps_y + slope * (0.05 - eps_y);
-        compare("final volumetric strain", last.volumetric_strain,
-                ev_reference, 1e-8);
+        compare("final volumetric strain",
+                last.volumetric_strain,
+                ev_reference,
+                1e-8);
         std::cout << "    d eps_v / d eps_a after failure = "
                   << flush_to_zero(measured_slope, 1e-12)
                   << ", reference 3 eta_bar / (sqrt(3) - eta_bar) = " << slope
                   << '\n';
         const double dgamma_per_strain = 1 / (1 / std::sqrt(3.) - eta_bar / 3);
-        compare("final plastic shear strain", last.state[0],
-                dgamma_per_strain / std::sqrt(3.) * (0.05 - eps_y), 1e-8);
+        compare("final plastic shear strain",
+                last.state[0],
+                dgamma_per_strain / std::sqrt(3.) * (0.05 - eps_y),
+                1e-8);
       }
   }
 
@@ -701,8 +703,11 @@ namespace
   // has k = sin(phi); the plane-strain fit gives k = sin(phi) exactly for
   // psi = phi.
   double
-  biaxial_limit(const Parameters &p, const double p0, const double strain,
-                const unsigned int n_steps, double &max_residual)
+  biaxial_limit(const Parameters  &p,
+                const double       p0,
+                const double       strain,
+                const unsigned int n_steps,
+                double            &max_residual)
   {
     const auto            model  = make_model(p);
     SymmetricTensor<2, 3> stress = -p0 * unit_symmetric_tensor<3>();
@@ -711,19 +716,19 @@ namespace
     max_residual                 = 0;
     for (unsigned int n = 0; n < n_steps; ++n)
       {
-        const auto residual = [&](const double x, SymmetricTensor<2, 3> &s,
-                                  double &st) {
-          s  = stress;
-          st = state;
-          SymmetricTensor<2, 3> de;
-          de[0][0] = x;
-          de[1][1] = -d;
-          model->update_stress(de, s, ArrayView<double>(&st, 1), 1.);
-          return s[0][0] + p0;
-        };
+        const auto residual =
+          [&](const double x, SymmetricTensor<2, 3> &s, double &st) {
+            s  = stress;
+            st = state;
+            SymmetricTensor<2, 3> de;
+            de[0][0] = x;
+            de[1][1] = -d;
+            model->update_stress(de, s, ArrayView<double>(&st, 1), 1.);
+            return s[0][0] + p0;
+          };
         SymmetricTensor<2, 3> s;
         double                st;
-        double lo = -10 * d, hi = 10 * d;
+        double                lo = -10 * d, hi = 10 * d;
         double f_lo = residual(lo, s, st), f_hi = residual(hi, s, st);
         double x = 0, f = 0;
         int    side = 0;
@@ -775,26 +780,28 @@ namespace
     // are still 3e-4 and 7e-3 away at eps_yy = -0.1, 5e-7 and 5e-9 at -0.2);
     // at -0.4 the remaining difference is rounding.
     for (const Case &c : {Case{"plane strain", 30., 1e-6},
-                         Case{"plane strain", 0., 1e-6},
-                         Case{"compression", 30., 1e-6}})
+                          Case{"plane strain", 0., 1e-6},
+                          Case{"compression", 30., 1e-6}})
       {
         Parameters p;
-        p.fit         = c.fit;
-        p.psi         = c.psi;
+        p.fit                 = c.fit;
+        p.psi                 = c.psi;
         double       residual = 0;
         const double syy      = biaxial_limit(p, p0, 0.4, 4000, residual);
         const auto [eta, xi]  = fit_coefficients(p.fit, p.phi);
         (void)xi;
         const double eta_bar = fit_coefficients(p.fit, p.psi).first;
-        const double k = eta * std::sqrt(1 - eta_bar * eta_bar / 3) /
-                         (1 - eta * eta_bar / 3);
+        const double k =
+          eta * std::sqrt(1 - eta_bar * eta_bar / 3) / (1 - eta * eta_bar / 3);
         const double reference = -p0 * (1 + k) / (1 - k);
         std::cout << "  " << c.fit << " fit, psi = " << c.psi
                   << " (lateral stress residual / p0 <= "
                   << (residual <= 1e-12 ? "1e-12" : "MORE THAN 1e-12")
                   << "):\n";
-        compare("limit sigma_yy [Pa] vs (1 + k) / (1 - k) closed form", syy,
-                reference, c.tolerance);
+        compare("limit sigma_yy [Pa] vs (1 + k) / (1 - k) closed form",
+                syy,
+                reference,
+                c.tolerance);
         std::cout << "    k = " << k << ", Mohr-Coulomb sin(phi) = " << sin_phi
                   << "; sigma_yy relative to the Mohr-Coulomb plane-strain "
                      "limit "
@@ -818,16 +825,18 @@ namespace
                  "30, psi 0, c 20 kPa, p0 100 kPa, gamma to 0.1 in 400 "
                  "steps)\n";
     Parameters p;
-    p.fit                 = "plane strain";
-    p.c                   = 2e4;
-    const double p0       = 1e5;
-    const auto   driver   = MPM::MaterialPointDriver::from_text(
+    p.fit               = "plane strain";
+    p.c                 = 2e4;
+    const double p0     = 1e5;
+    const auto   driver = MPM::MaterialPointDriver::from_text(
       driver_text(p, "simple shear", p0, 0.1, 400));
-    const auto   history  = driver.run_path();
-    const auto  &last     = history.records.back();
-    const auto [eta, xi]  = fit_coefficients(p.fit, p.phi);
+    const auto  history  = driver.run_path();
+    const auto &last     = history.records.back();
+    const auto [eta, xi] = fit_coefficients(p.fit, p.phi);
     // Tolerance 1e-12: the limit is reached in one return and kept.
-    compare("final sigma_xy [Pa]", last.stress[0][1], xi * p.c + eta * p0,
+    compare("final sigma_xy [Pa]",
+            last.stress[0][1],
+            xi * p.c + eta * p0,
             1e-12);
     compare("final mean stress [Pa]", mean(last.stress), -p0, 1e-12);
     // The elastic part: sigma_xy = G gamma up to gamma_y = tau / G.
@@ -839,8 +848,10 @@ namespace
     std::cout << "    elastic part: max |sigma_xy - G gamma| / p0 = "
               << flush_to_zero(e, 1e-12) << " (<= 1e-12)\n";
     check(e <= 1e-12, "elastic part of simple shear");
-    compare("final plastic shear strain", last.state[0],
-            (0.1 - gamma_y) / std::sqrt(3.), 1e-10);
+    compare("final plastic shear strain",
+            last.state[0],
+            (0.1 - gamma_y) / std::sqrt(3.),
+            1e-10);
   }
 
 
@@ -855,25 +866,25 @@ namespace
                  "(compression fit, phi 30, psi 0, c 20 kPa, p0 100 kPa, "
                  "eps_a to 0.05 in 500 steps)\n";
     Parameters p;
-    p.c                  = 2e4;
-    const double p0      = 1e5;
-    const auto   driver  = MPM::MaterialPointDriver::from_text(
+    p.c                 = 2e4;
+    const double p0     = 1e5;
+    const auto   driver = MPM::MaterialPointDriver::from_text(
       driver_text(p, "undrained triaxial", p0, 0.05, 500));
-    const auto   history = driver.run_path();
-    const auto [eta, xi] = fit_coefficients(p.fit, p.phi);
-    const double limit   = xi * p.c + eta * p0;
-    const double eps_y   = limit / (std::sqrt(3.) * p.G());
+    const auto history    = driver.run_path();
+    const auto [eta, xi]  = fit_coefficients(p.fit, p.phi);
+    const double limit    = xi * p.c + eta * p0;
+    const double eps_y    = limit / (std::sqrt(3.) * p.G());
     double       max_mean = 0, max_elastic = 0, max_f_after = 0;
     unsigned int first_plastic = 0;
     for (const auto &r : history.records)
       {
         max_mean = std::max(max_mean, std::abs(mean(r.stress) + p0) / p0);
         if (r.path_strain < eps_y)
-          max_elastic = std::max(max_elastic,
-                                 std::abs(root_j2(r.stress) -
-                                          std::sqrt(3.) * p.G() *
-                                            r.path_strain) /
-                                   p0);
+          max_elastic =
+            std::max(max_elastic,
+                     std::abs(root_j2(r.stress) -
+                              std::sqrt(3.) * p.G() * r.path_strain) /
+                       p0);
         else
           {
             if (first_plastic == 0)
@@ -890,27 +901,30 @@ namespace
     check(max_elastic <= 1e-12, "elastic part");
     std::cout << "    first step at or past eps_y = " << eps_y << ": "
               << first_plastic << ", reference ceil(500 eps_y / 0.05) = "
-              << std::ceil(500 * eps_y / 0.05)
-              << "; max |f| / p0 from there = "
+              << std::ceil(500 * eps_y / 0.05) << "; max |f| / p0 from there = "
               << flush_to_zero(max_f_after, 1e-12) << " (<= 1e-12)\n";
     check(max_f_after <= 1e-12, "reaches the cone and stays on it");
-    compare("final sqrt(J2) [Pa]", root_j2(history.records.back().stress),
-            limit, 1e-12);
+    compare("final sqrt(J2) [Pa]",
+            root_j2(history.records.back().stress),
+            limit,
+            1e-12);
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-6\n" << std::setprecision(8);
-  test_input();
-  test_elastic();
-  test_random();
-  test_apex();
-  test_drained_triaxial();
-  test_plane_strain();
-  test_simple_shear();
-  test_undrained();
-  return summary();
-}
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-6\n" << std::setprecision(8);
+    test_input();
+    test_elastic();
+    test_random();
+    test_apex();
+    test_drained_triaxial();
+    test_plane_strain();
+    test_simple_shear();
+    test_undrained();
+    return summary();
+  }
+} // namespace unit_drucker_prager
+
+MPM_UNIT_TEST_REGISTER(drucker_prager)

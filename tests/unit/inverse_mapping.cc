@@ -35,8 +35,8 @@
 #include <deal.II/grid/tria.h>
 
 #include <mpm/base/input_error.h>
-#include <mpm/grid/inverse_mapping.h>
 #include <mpm/grid/extruded_cell_map.h>
+#include <mpm/grid/inverse_mapping.h>
 
 #include <cmath>
 #include <cstdint>
@@ -45,11 +45,13 @@
 #include <string>
 #include <vector>
 
-using namespace dealii;
-using namespace MPM;
+#include "unit_test_tools.h"
 
-namespace
+namespace unit_inverse_mapping
 {
+  using namespace dealii;
+  using namespace MPM;
+
   using Vertices = std::array<Point<2>, 4>;
 
   struct Shape
@@ -129,11 +131,12 @@ namespace
     // 28 are inside.
     {
       const double delta = std::tan(0.5 * 1e-2 * M_PI / 180) * std::sqrt(0.5);
-      s.push_back({"nearly degenerate, angle 179.99 deg",
-                   {{{0, 0},
-                     {1, 0},
-                     {0.5 - delta * std::sqrt(0.5), 0.5 + delta * std::sqrt(0.5)},
-                     {1, 1}}}});
+      s.push_back(
+        {"nearly degenerate, angle 179.99 deg",
+         {{{0, 0},
+           {1, 0},
+           {0.5 - delta * std::sqrt(0.5), 0.5 + delta * std::sqrt(0.5)},
+           {1, 1}}}});
     }
     // Aspect ratio 1000, slightly non-rectangular so the map is bilinear.
     const Vertices thin_x{{{0, 0}, {1000, 0}, {0, 1}, {1000, 1.5}}};
@@ -176,7 +179,7 @@ namespace
   {
   public:
     explicit Methods(const Vertices &vertices)
-      : vertices(vertices)
+        : vertices(vertices)
     {
       GridGenerator::general_cell(triangulation,
                                   std::vector<Point<2>>(vertices.begin(),
@@ -444,7 +447,7 @@ namespace
                      true});
     {
       // The top's x one ulp off the column (a refined mesh's averages).
-      auto v = extruded_cell(rectangle, 2, 2, 120);
+      auto v  = extruded_cell(rectangle, 2, 2, 120);
       v[5][0] = std::nextafter(v[5][0], 100.);
       cases.push_back({"terrain column, top vertex one ulp off", v, true});
     }
@@ -472,9 +475,9 @@ namespace
     for (const auto &c : cases)
       {
         const ExtrudedCellMap map(c.vertices);
-        std::mt19937_64        generator(7);
-        double                 error_xi = 0, difference = 0;
-        unsigned int           failures = 0, n_differ = 0;
+        std::mt19937_64       generator(7);
+        double                error_xi = 0, difference = 0;
+        unsigned int          failures = 0, n_differ = 0;
         for (unsigned int n = 0; n < 2000; ++n)
           {
             // Inside, then up to half a cell outside.
@@ -498,35 +501,39 @@ namespace
                   << (map.is_extruded() ? "yes" : "no")
                   << (map.is_extruded() == c.extruded ? "" : " (WRONG)")
                   << ", |xi(x(xi)) - xi| " << verdict(error_xi)
-                  << ", against Newton " << verdict(difference)
-                  << ", failures " << failures;
+                  << ", against Newton " << verdict(difference) << ", failures "
+                  << failures;
         if (!c.extruded)
           std::cout << ", bits differ from Newton's in " << n_differ
                     << " of 2000";
         std::cout << '\n';
       }
   }
-} // namespace
 
 
-int
-main()
-{
-  for (const std::string name : {"closed form", "newton", "deal.II"})
-    std::cout << "parse '" << name << "' -> '"
-              << to_string(parse_inverse_mapping_type(name)) << "'\n";
-  try
-    {
-      parse_inverse_mapping_type("Newton");
-    }
-  catch (const InputError &error)
-    {
-      std::cout << "parse 'Newton': " << error.what() << '\n';
-    }
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    for (const std::string name : {"closed form", "newton", "deal.II"})
+      std::cout << "parse '" << name << "' -> '"
+                << to_string(parse_inverse_mapping_type(name)) << "'\n";
+    try
+      {
+        parse_inverse_mapping_type("Newton");
+      }
+    catch (const InputError &error)
+      {
+        std::cout << "parse 'Newton': " << error.what() << '\n';
+      }
 
-  for (const auto &shape : shapes())
-    test_shape(shape);
+    for (const auto &shape : shapes())
+      test_shape(shape);
 
-  test_newton_3d();
-  test_extruded_3d();
-}
+    test_newton_3d();
+    test_extruded_3d();
+    // The comparison of the output is the check.
+    return 0;
+  }
+} // namespace unit_inverse_mapping
+
+MPM_UNIT_TEST_REGISTER(inverse_mapping)

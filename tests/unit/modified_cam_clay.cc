@@ -25,13 +25,13 @@
 #include <string>
 #include <vector>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialPointDriver;
-using MPM::MaterialModels::ModifiedCamClay;
-
-namespace
+namespace unit_modified_cam_clay
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialPointDriver;
+  using MPM::MaterialModels::ModifiedCamClay;
+
   constexpr double M      = 1.2;
   constexpr double lambda = 0.2;
   constexpr double kappa  = 0.04;
@@ -114,7 +114,7 @@ namespace
         prm.set("Kappa", "0.04");
         prm.set(entry, value);
         ModifiedCamClay model;
-        bool rejected = false;
+        bool            rejected = false;
         try
           {
             model.parse_parameters(prm);
@@ -144,11 +144,10 @@ namespace
   {
     std::cout << "(a) undrained triaxial, normally consolidated, p0 = 200 "
                  "kPa, 20 % axial strain in 2000 steps\n";
-    const double p0 = 200e3;
-    const auto   history =
-      MaterialPointDriver::from_text(
-        parameters("undrained triaxial", p0, p0, 0.2, 2000))
-        .run_path();
+    const double p0      = 200e3;
+    const auto   history = MaterialPointDriver::from_text(
+                           parameters("undrained triaxial", p0, p0, 0.2, 2000))
+                           .run_path();
     double max_error = 0, max_vol = 0;
     for (const Record &r : history.records)
       {
@@ -205,19 +204,18 @@ namespace
   {
     std::cout << "(b) drained triaxial, normally consolidated, p0 = 200 kPa, "
                  "100 % axial strain in 10000 steps\n";
-    const double p0 = 200e3;
-    const auto   history =
-      MaterialPointDriver::from_text(
-        parameters("drained triaxial", p0, p0, 1.0, 10000))
-        .run_path();
+    const double p0      = 200e3;
+    const auto   history = MaterialPointDriver::from_text(
+                           parameters("drained triaxial", p0, p0, 1.0, 10000))
+                           .run_path();
     double max_path = 0, max_v = 0;
     for (const Record &r : history.records)
       {
         const double p = pressure(r.stress), q = von_mises(r.stress);
-        max_path = std::max(max_path, std::abs(q - 3 * (p - p0)) / p0);
+        max_path         = std::max(max_path, std::abs(q - 3 * (p - p0)) / p0);
         const double p_c = p + q * q / (M * M * p);
-        const double v   = v0 - kappa * std::log(p / p0) -
-                         (lambda - kappa) * std::log(p_c / p0);
+        const double v =
+          v0 - kappa * std::log(p / p0) - (lambda - kappa) * std::log(p_c / p0);
         max_v = std::max(max_v, std::abs(r.state[1] - v) / v);
       }
     std::cout << "    max |q - 3 (p - p0)| / p0 = "
@@ -228,17 +226,17 @@ namespace
               << max_v << '\n';
     check(max_v < 1e-5, "v on the NCL/CSL relation within 1e-5");
 
-    const Record &last   = history.records.back();
-    const double  p      = pressure(last.stress);
-    const double  q      = von_mises(last.stress);
-    const double  p_f    = 3 * p0 / (3 - M);
-    const double  v_f    = v0 - lambda * std::log(p_f / p0) -
-                       (lambda - kappa) * std::log(2.);
-    const double  eps_vf = std::log(v_f / v0);
+    const Record &last = history.records.back();
+    const double  p    = pressure(last.stress);
+    const double  q    = von_mises(last.stress);
+    const double  p_f  = 3 * p0 / (3 - M);
+    const double  v_f =
+      v0 - lambda * std::log(p_f / p0) - (lambda - kappa) * std::log(2.);
+    const double eps_vf = std::log(v_f / v0);
     std::cout << "    final q / p = " << q / p << ", M = " << M << '\n';
-    std::cout << "    final p = " << p << " Pa, closed form 3 p0 / (3 - M) = "
-              << p_f << " Pa; relative difference "
-              << std::abs(p - p_f) / p_f << '\n';
+    std::cout << "    final p = " << p
+              << " Pa, closed form 3 p0 / (3 - M) = " << p_f
+              << " Pa; relative difference " << std::abs(p - p_f) / p_f << '\n';
     check(std::abs(p - p_f) / p_f < 5e-4, "failure pressure within 5e-4");
     std::cout << "    final v = " << last.state[1]
               << ", closed form v0 - lambda ln(p_f / p0) - (lambda - kappa) "
@@ -252,8 +250,7 @@ namespace
               << "; relative difference "
               << std::abs(last.volumetric_strain - eps_vf) / std::abs(eps_vf)
               << '\n';
-    check(std::abs(last.volumetric_strain - eps_vf) / std::abs(eps_vf) <
-            1e-3,
+    check(std::abs(last.volumetric_strain - eps_vf) / std::abs(eps_vf) < 1e-3,
           "volumetric strain at failure within 1e-3");
     std::cout << "    final p_c = " << last.state[0]
               << " Pa, critical state 2 p_f = " << 2 * p_f << " Pa\n";
@@ -280,9 +277,9 @@ namespace
       MaterialPointDriver::from_text(
         parameters("undrained triaxial", p0, OCR * p0, 0.2, 2000))
         .run_path();
-    const double G   = 1.5 * (1 - 2 * nu) / (1 + nu) * v0 * p0 / kappa;
-    const double q_y = M * p0 * std::sqrt(OCR - 1);
-    const double strain_y = q_y / (3 * G);
+    const double G         = 1.5 * (1 - 2 * nu) / (1 + nu) * v0 * p0 / kappa;
+    const double q_y       = M * p0 * std::sqrt(OCR - 1);
+    const double strain_y  = q_y / (3 * G);
     double       max_error = 0, max_elastic = 0;
     unsigned int first_plastic = 0;
     for (const Record &r : history.records)
@@ -334,10 +331,10 @@ namespace
   {
     std::cout << "(d) oedometer, normally consolidated, p0 = 100 kPa, 40 % "
                  "axial strain in 4000 steps\n";
-    const double p0      = 100e3;
-    const auto   history = MaterialPointDriver::from_text(
-                           parameters("oedometer", p0, p0, 0.4, 4000))
-                           .run_path();
+    const double p0 = 100e3;
+    const auto   history =
+      MaterialPointDriver::from_text(parameters("oedometer", p0, p0, 0.4, 4000))
+        .run_path();
     const Record &a     = history.records[2500];
     const Record &b     = history.records.back();
     const double  slope = -(b.state[1] - a.state[1]) /
@@ -346,14 +343,14 @@ namespace
               << ", p from " << pressure(a.stress) << " to "
               << pressure(b.stress) << " Pa\n";
     std::cout << "    slope -de / dln p = " << slope << ", lambda = " << lambda
-              << "; relative difference "
-              << std::abs(slope - lambda) / lambda << '\n';
+              << "; relative difference " << std::abs(slope - lambda) / lambda
+              << '\n';
     check(std::abs(slope - lambda) / lambda < 1e-3, "NCL slope lambda");
     std::cout << "    q / p at 25 % and 40 %: "
               << von_mises(a.stress) / pressure(a.stress) << ' '
               << von_mises(b.stress) / pressure(b.stress)
-              << "; K0 = sigma_xx / sigma_yy = " << b.stress[0][0] / b.stress[1][1]
-              << '\n';
+              << "; K0 = sigma_xx / sigma_yy = "
+              << b.stress[0][0] / b.stress[1][1] << '\n';
     // The specific volume follows the kinematics: v = v0 exp(eps_v).
     const double v_kin = v0 * std::exp(b.volumetric_strain);
     std::cout << "    v = " << b.state[1] << ", v0 exp(eps_v) = " << v_kin
@@ -375,26 +372,25 @@ namespace
       parameters("oedometer", 100e3, 100e3, 0.4, 4000));
     const MPM::MaterialModel &model = *driver.material().model;
     check(model.stiffness_depends_on_state(), "stiffness depends on state");
-    const double ratio = 1 + 2 * (1 - 2 * nu) / (1 + nu);
+    const double ratio     = 1 + 2 * (1 - 2 * nu) / (1 + nu);
     double       max_error = 0;
     for (const Record &r : records)
       {
         const double p = pressure(r.stress);
         const double m = model.p_wave_modulus(
           r.stress, ArrayView<const double>(r.state.data(), r.state.size()));
-        max_error = std::max(max_error,
-                             std::abs(m / (r.state[1] * p / kappa) - ratio) /
-                               ratio);
+        max_error =
+          std::max(max_error,
+                   std::abs(m / (r.state[1] * p / kappa) - ratio) / ratio);
       }
     for (const unsigned int i : {0u, 1000u, 2000u, 4000u})
       {
         const Record &r = records[i];
-        std::cout << "    p = " << pressure(r.stress) << " Pa, v = "
-                  << r.state[1] << ": P-wave modulus "
+        std::cout << "    p = " << pressure(r.stress)
+                  << " Pa, v = " << r.state[1] << ": P-wave modulus "
                   << model.p_wave_modulus(
                        r.stress,
-                       ArrayView<const double>(r.state.data(),
-                                               r.state.size()))
+                       ArrayView<const double>(r.state.data(), r.state.size()))
                   << " Pa\n";
       }
     std::cout << "    max relative deviation from v p / kappa (1 + 2 (1 - 2 "
@@ -436,8 +432,8 @@ namespace
       const double f = q * q / (M * M) + p * (p - state[0]);
       std::cout << "    shear strain 0.1 in one increment: p = " << p
                 << " Pa, q / p = " << q / p << ", p_c = " << state[0]
-                << " Pa, f / p_c^2 = " << flush_to_zero(f / (state[0] * state[0]), 1e-10)
-                << '\n';
+                << " Pa, f / p_c^2 = "
+                << flush_to_zero(f / (state[0] * state[0]), 1e-10) << '\n';
       check(std::abs(f) < 1e-10 * state[0] * state[0] && p > 0,
             "on the yield surface after a sub-stepped return");
     }
@@ -445,9 +441,8 @@ namespace
       SymmetricTensor<2, 3> stress = -10e3 * unit_symmetric_tensor<3>();
       std::vector<double>   state(4);
       model.initialize_state(ArrayView<double>(state));
-      SymmetricTensor<2, 3> increment =
-        (0.1 / 3) * unit_symmetric_tensor<3>();
-      increment[0][1] = 0.01;
+      SymmetricTensor<2, 3> increment = (0.1 / 3) * unit_symmetric_tensor<3>();
+      increment[0][1]                 = 0.01;
       model.update_stress(increment, stress, ArrayView<double>(state), 1.);
       // The elastic extension from 10 kPa to 0 (exponential to p_min =
       // 1 kPa, then linear) is (1 - ln(p_min / 10 kPa)) kappa / v at a
@@ -462,25 +457,27 @@ namespace
                 << " Pa, plastic volumetric strain " << state[3]
                 << ", elastic part " << elastic << " in [" << elastic_end
                 << ", " << elastic_v0 << "]\n";
-      check(stress.norm() == 0 && state[0] == 100e3 &&
-              elastic > elastic_end && elastic < elastic_v0,
+      check(stress.norm() == 0 && state[0] == 100e3 && elastic > elastic_end &&
+              elastic < elastic_v0,
             "apex, p_c unchanged, elastic part between its bounds");
     }
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-5\n" << std::setprecision(8);
-  input_checks();
-  undrained_nc();
-  drained_nc();
-  undrained_oc();
-  std::vector<Record> records;
-  oedometer(records);
-  p_wave_modulus(records);
-  large_increment_and_tension();
-  return summary();
-}
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-5\n" << std::setprecision(8);
+    input_checks();
+    undrained_nc();
+    drained_nc();
+    undrained_oc();
+    std::vector<Record> records;
+    oedometer(records);
+    p_wave_modulus(records);
+    large_increment_and_tension();
+    return summary();
+  }
+} // namespace unit_modified_cam_clay
+
+MPM_UNIT_TEST_REGISTER(modified_cam_clay)

@@ -23,12 +23,12 @@
 #include <random>
 #include <string>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialModels::MohrCoulomb;
-
-namespace
+namespace unit_mohr_coulomb
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialModels::MohrCoulomb;
+
   struct Parameters
   {
     double E   = 2e6;
@@ -134,7 +134,8 @@ namespace
     double state = 0;
     model.update_stress(SymmetricTensor<2, 3>(),
                         stress,
-                        ArrayView<double>(&state, 1), 1.);
+                        ArrayView<double>(&state, 1),
+                        1.);
     return state;
   }
 
@@ -169,17 +170,16 @@ namespace
   test_input_errors()
   {
     std::cout << "(0) input checks\n";
-    const auto expect_error = [](const Parameters &p)
-    {
+    const auto expect_error = [](const Parameters &p) {
       try
-      {
-        make_model(p);
-        check(false, "accepted invalid input");
-      }
+        {
+          make_model(p);
+          check(false, "accepted invalid input");
+        }
       catch (const MPM::InputError &e)
-      {
-        std::cout << "    rejected: " << e.what() << '\n';
-      }
+        {
+          std::cout << "    rejected: " << e.what() << '\n';
+        }
     };
     Parameters p;
     p.nu = 0.5;
@@ -257,11 +257,11 @@ namespace
     double       state         = 0;
     unsigned int first_plastic = 0;
     for (unsigned int step = 1; step <= 200; ++step)
-    {
-      model->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
-      if (state > 0 && first_plastic == 0)
-        first_plastic = step;
-    }
+      {
+        model->update_stress(de, stress, ArrayView<double>(&state, 1), 1.);
+        if (state > 0 && first_plastic == 0)
+          first_plastic = step;
+      }
     const auto   s   = principal(stress);
     const double tau = 1e5 * sin_phi;
     std::cout << "    first plastic step " << first_plastic
@@ -302,14 +302,14 @@ namespace
                                             diagonal(1e4, 1e4, 1e4),
                                             diagonal(5e4, -1e3, -1e3)};
     for (auto stress : trials)
-    {
-      const unsigned int set = active_set(*sand, stress);
-      return_stress(*sand, stress);
-      std::cout << "    c = 0, trial (" << set_name(set)
-                << "): max |sigma_ij| = " << max_abs(stress)
-                << ", reference 0\n";
-      check(max_abs(stress) == 0, "exactly zero stress");
-    }
+      {
+        const unsigned int set = active_set(*sand, stress);
+        return_stress(*sand, stress);
+        std::cout << "    c = 0, trial (" << set_name(set)
+                  << "): max |sigma_ij| = " << max_abs(stress)
+                  << ", reference 0\n";
+        check(max_abs(stress) == 0, "exactly zero stress");
+      }
     // A large tensile strain increment from a compressed state.
     SymmetricTensor<2, 3> stress = diagonal(-1e5, -1e5, -1e5), de;
     de[0][0]                     = 0.2;
@@ -376,34 +376,35 @@ namespace
        diagonal(2e5, 5e4, -1e5),
        1 | 4 | 8}};
     for (const auto &c : cases)
-    {
-      const auto            model  = make_model(c.p);
-      SymmetricTensor<2, 3> stress = rotate(c.trial, R);
-      const unsigned int    set    = active_set(*model, stress);
-      return_stress(*model, stress);
-      const auto   s     = principal(stress);
-      const double scale = std::abs(mean(c.trial));
-      std::cout << "    " << c.name << ": " << set_name(set) << ", expected "
-                << set_name(c.expected) << '\n'
-                << "      principal stresses " << s[0] << ' ' << s[1] << ' '
-                << s[2]
-                << ", f / |p_trial| = " << flush_to_zero(yield(stress, c.p) / scale)
-                << '\n';
-      if (c.expected & 4)
-        std::cout << "      (s1 - s2) / |p_trial| = "
-                  << flush_to_zero((s[0] - s[1]) / scale) << ", reference 0\n";
-      if (c.expected & 2)
-        std::cout << "      (s2 - s3) / |p_trial| = "
-                  << flush_to_zero((s[1] - s[2]) / scale) << ", reference 0\n";
-      if (c.expected & 8)
-        std::cout << "      s1 = " << s[0] << ", reference T = " << c.p.T
-                  << '\n';
-      if (c.expected & 16)
-        std::cout << "      s2 = " << s[1] << ", reference T = " << c.p.T
-                  << '\n';
-      check(set == c.expected && std::abs(yield(stress, c.p)) < 1e-10 * scale,
-            "expected case, on the surface");
-    }
+      {
+        const auto            model  = make_model(c.p);
+        SymmetricTensor<2, 3> stress = rotate(c.trial, R);
+        const unsigned int    set    = active_set(*model, stress);
+        return_stress(*model, stress);
+        const auto   s     = principal(stress);
+        const double scale = std::abs(mean(c.trial));
+        std::cout << "    " << c.name << ": " << set_name(set) << ", expected "
+                  << set_name(c.expected) << '\n'
+                  << "      principal stresses " << s[0] << ' ' << s[1] << ' '
+                  << s[2] << ", f / |p_trial| = "
+                  << flush_to_zero(yield(stress, c.p) / scale) << '\n';
+        if (c.expected & 4)
+          std::cout << "      (s1 - s2) / |p_trial| = "
+                    << flush_to_zero((s[0] - s[1]) / scale)
+                    << ", reference 0\n";
+        if (c.expected & 2)
+          std::cout << "      (s2 - s3) / |p_trial| = "
+                    << flush_to_zero((s[1] - s[2]) / scale)
+                    << ", reference 0\n";
+        if (c.expected & 8)
+          std::cout << "      s1 = " << s[0] << ", reference T = " << c.p.T
+                    << '\n';
+        if (c.expected & 16)
+          std::cout << "      s2 = " << s[1] << ", reference T = " << c.p.T
+                    << '\n';
+        check(set == c.expected && std::abs(yield(stress, c.p)) < 1e-10 * scale,
+              "expected case, on the surface");
+      }
   }
 
 
@@ -465,41 +466,42 @@ namespace
     // mt19937 is specified bit for bit; the distributions of <random> are
     // not, so map its output to [a, b) by hand.
     std::mt19937 rng(42);
-    const auto   uniform = [&rng](const double a, const double b)
-    { return a + (b - a) * (rng() / 4294967296.); };
+    const auto   uniform = [&rng](const double a, const double b) {
+      return a + (b - a) * (rng() / 4294967296.);
+    };
 
     double max_f = 0, max_rotation = 0, max_repeat = 0;
     std::map<unsigned int, unsigned int> count;
     for (unsigned int n = 0; n < 10000; ++n)
-    {
-      const unsigned int    m = n % 3;
-      SymmetricTensor<2, 3> trial;
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = i; j < 3; ++j)
-          trial[i][j] = uniform(-1e5, 1e5);
-      const double shift = uniform(-2e5, 1e5);
-      for (unsigned int i = 0; i < 3; ++i)
-        trial[i][i] += shift;
-      const double scale = max_abs(trial);
+      {
+        const unsigned int    m = n % 3;
+        SymmetricTensor<2, 3> trial;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            trial[i][j] = uniform(-1e5, 1e5);
+        const double shift = uniform(-2e5, 1e5);
+        for (unsigned int i = 0; i < 3; ++i)
+          trial[i][i] += shift;
+        const double scale = max_abs(trial);
 
-      ++count[m * 1000 + active_set(*models[m], trial)];
-      SymmetricTensor<2, 3> stress = trial;
-      return_stress(*models[m], stress);
-      max_f = std::max(max_f, yield(stress, sets[m]) / scale);
+        ++count[m * 1000 + active_set(*models[m], trial)];
+        SymmetricTensor<2, 3> stress = trial;
+        return_stress(*models[m], stress);
+        max_f = std::max(max_f, yield(stress, sets[m]) / scale);
 
-      const Tensor<2, 3>    R       = rotation(uniform(-1, 1),
-                                      uniform(-1, 1),
-                                      uniform(-1, 1),
-                                      uniform(-1, 1));
-      SymmetricTensor<2, 3> rotated = rotate(trial, R);
-      return_stress(*models[m], rotated);
-      max_rotation =
-        std::max(max_rotation, max_abs(rotated - rotate(stress, R)) / scale);
+        const Tensor<2, 3>    R       = rotation(uniform(-1, 1),
+                                        uniform(-1, 1),
+                                        uniform(-1, 1),
+                                        uniform(-1, 1));
+        SymmetricTensor<2, 3> rotated = rotate(trial, R);
+        return_stress(*models[m], rotated);
+        max_rotation =
+          std::max(max_rotation, max_abs(rotated - rotate(stress, R)) / scale);
 
-      SymmetricTensor<2, 3> again = stress;
-      return_stress(*models[m], again);
-      max_repeat = std::max(max_repeat, max_abs(again - stress));
-    }
+        SymmetricTensor<2, 3> again = stress;
+        return_stress(*models[m], again);
+        max_repeat = std::max(max_repeat, max_abs(again - stress));
+      }
     std::cout << "    max f / max|sigma_trial| = " << flush_to_zero(max_f)
               << " (<= 1e-10 required)\n";
     check(max_f <= 1e-10, "all returned stresses admissible");
@@ -515,11 +517,11 @@ namespace
                  "psi = 10 | associated, T = c cot phi):\n";
     bool fallback = false;
     for (const auto &[key, n] : count)
-    {
-      std::cout << "      " << key / 1000 << ' ' << std::setw(32) << std::left
-                << set_name(key % 1000) << std::right << n << '\n';
-      fallback = fallback || (key % 1000) & MohrCoulomb::fallback;
-    }
+      {
+        std::cout << "      " << key / 1000 << ' ' << std::setw(32) << std::left
+                  << set_name(key % 1000) << std::right << n << '\n';
+        fallback = fallback || (key % 1000) & MohrCoulomb::fallback;
+      }
     check(!fallback, "no fallback");
   }
 
@@ -539,21 +541,23 @@ namespace
               << ", plastic strain added = " << state << ", reference 0 0\n";
     check(max_abs(again - stress) == 0 && state == 0, "unchanged");
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-5\n";
-  std::cout << std::setprecision(6);
-  test_input_errors();
-  test_elastic();
-  test_simple_shear();
-  test_apex();
-  test_edges();
-  test_no_dilation();
-  test_random();
-  test_idempotent();
-  return UnitTest::summary();
-}
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-5\n";
+    std::cout << std::setprecision(6);
+    test_input_errors();
+    test_elastic();
+    test_simple_shear();
+    test_apex();
+    test_edges();
+    test_no_dilation();
+    test_random();
+    test_idempotent();
+    return UnitTest::summary();
+  }
+} // namespace unit_mohr_coulomb
+
+MPM_UNIT_TEST_REGISTER(mohr_coulomb)

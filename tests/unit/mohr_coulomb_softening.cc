@@ -44,12 +44,12 @@
 #include <string>
 #include <vector>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialPointDriver;
-
-namespace
+namespace unit_mohr_coulomb_softening
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialPointDriver;
+
   constexpr double degree = M_PI / 180.;
 
   struct Case
@@ -120,7 +120,10 @@ namespace
 
   /// The softened value of a parameter at kappa (linear, as documented).
   double
-  soften(const Case &c, const double peak, const double residual, const double kappa)
+  soften(const Case  &c,
+         const double peak,
+         const double residual,
+         const double kappa)
   {
     const double w = std::clamp((kappa * c.kappa_scale() - c.kappa_peak) /
                                   (c.kappa_residual - c.kappa_peak),
@@ -190,14 +193,13 @@ namespace
   {
     const MaterialPointDriver driver =
       MaterialPointDriver::from_text(parameters(c, n_steps));
-    const auto history = driver.run_path();
+    const auto     history = driver.run_path();
     const Integral axial_plastic(c, [](double s) {
       return 3 * (1 - s) / (3 - s);
     });
-    const Integral volumetric_plastic(c, [](double s) {
-      return 6 * s / (3 - s);
-    });
-    Errors e;
+    const Integral volumetric_plastic(c,
+                                      [](double s) { return 6 * s / (3 - s); });
+    Errors         e;
     for (const auto &r : history.records)
       {
         const double kappa   = r.state[0];
@@ -211,7 +213,7 @@ namespace
               std::max(e.consistency,
                        std::abs(sigma_a - axial_stress(c, kappa)) / c.p0);
           }
-        const double elastic = (sigma_a - c.p0) / c.E;
+        const double elastic   = (sigma_a - c.p0) / c.E;
         const double a_plastic = axial_plastic(kappa);
         const double v_plastic = volumetric_plastic(kappa);
         e.axial = std::max(e.axial, std::abs(eps_a - elastic - a_plastic));
@@ -255,7 +257,7 @@ namespace
               "strains within 2e-4 of the closed form");
         // The error that converges: the consistency of the explicit
         // return, the strains of the implicit one (where not exact).
-        const double error          = explicit_return ? e.consistency : e.axial;
+        const double error = explicit_return ? e.consistency : e.axial;
         const double previous_error =
           explicit_return ? previous.consistency : previous.axial;
         if (n > 750 && (explicit_return || previous_error > 1e-10))
@@ -264,8 +266,8 @@ namespace
             std::cout << (explicit_return ?
                             "    consistency error ratio to half the steps: " :
                             "    axial error ratio to half the steps: ")
-                      << std::setprecision(3) << ratio
-                      << std::setprecision(6) << '\n';
+                      << std::setprecision(3) << ratio << std::setprecision(6)
+                      << '\n';
             check(ratio > 1.8 && ratio < 2.2,
                   explicit_return ?
                     "the explicit strength is first order in the step "
@@ -288,91 +290,95 @@ namespace
         previous = e;
       }
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-4\n";
-  std::cout << std::setprecision(6);
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-4\n";
+    std::cout << std::setprecision(6);
 
-  // Friction softening, no dilation: the axial plastic strain is kappa
-  // itself, so the strains are exact as well.
-  Case friction;
-  report("friction 35 -> 25 deg, psi 0, c 0", friction);
+    // Friction softening, no dilation: the axial plastic strain is kappa
+    // itself, so the strains are exact as well.
+    Case friction;
+    report("friction 35 -> 25 deg, psi 0, c 0", friction);
 
-  // Friction and dilation: psi 10 -> 0 deg.
-  Case dilation;
-  dilation.psi_peak = 10;
-  report("friction 35 -> 25 deg, psi 10 -> 0 deg, c 0", dilation);
+    // Friction and dilation: psi 10 -> 0 deg.
+    Case dilation;
+    dilation.psi_peak = 10;
+    report("friction 35 -> 25 deg, psi 10 -> 0 deg, c 0", dilation);
 
-  // Cohesion and friction, from kappa = 0.
-  Case cohesion;
-  cohesion.phi_peak     = 30;
-  cohesion.phi_residual = 20;
-  cohesion.c_peak       = 2e4;
-  cohesion.c_residual   = 2e3;
-  cohesion.kappa_peak   = 0;
-  report("friction 30 -> 20 deg, c 20 -> 2 kPa, psi 0", cohesion);
+    // Cohesion and friction, from kappa = 0.
+    Case cohesion;
+    cohesion.phi_peak     = 30;
+    cohesion.phi_residual = 20;
+    cohesion.c_peak       = 2e4;
+    cohesion.c_residual   = 2e3;
+    cohesion.kappa_peak   = 0;
+    report("friction 30 -> 20 deg, c 20 -> 2 kPa, psi 0", cohesion);
 
-  // The same, regularised, in a cell twice the reference size: the
-  // softening strains halve (peak at kappa = 0 stays 0).
-  Case regularised = cohesion;
-  regularised.reference_cell_size = 0.5;
-  regularised.cell_size           = 1;
-  report("regularised: cell size 1 m, reference 0.5 m: friction 30 -> 20 "
-         "deg, c 20 -> 2 kPa over kappa 0 -> 0.025",
-         regularised);
+    // The same, regularised, in a cell twice the reference size: the
+    // softening strains halve (peak at kappa = 0 stays 0).
+    Case regularised                = cohesion;
+    regularised.reference_cell_size = 0.5;
+    regularised.cell_size           = 1;
+    report("regularised: cell size 1 m, reference 0.5 m: friction 30 -> 20 "
+           "deg, c 20 -> 2 kPa over kappa 0 -> 0.025",
+           regularised);
 
-  // The same with the non-local regularisation: on one point (a
-  // homogeneous body) kappa* = kappa, the strength of the step before.
-  Case nonlocal         = cohesion;
-  nonlocal.nonlocal_radius = 2;
-  report("non-local (R = 2 m) on a homogeneous point: friction 30 -> 20 "
-         "deg, c 20 -> 2 kPa, psi 0",
-         nonlocal);
+    // The same with the non-local regularisation: on one point (a
+    // homogeneous body) kappa* = kappa, the strength of the step before.
+    Case nonlocal            = cohesion;
+    nonlocal.nonlocal_radius = 2;
+    report("non-local (R = 2 m) on a homogeneous point: friction 30 -> 20 "
+           "deg, c 20 -> 2 kPa, psi 0",
+           nonlocal);
 
-  std::cout << "input errors\n";
-  for (const auto &[entry, value] :
-       std::vector<std::pair<std::string, std::string>>{
-         {"Residual friction angle", "40"},
-         {"Residual cohesion", "1"},
-         {"Residual plastic shear strain", "0.005"}})
+    std::cout << "input errors\n";
+    for (const auto &[entry, value] :
+         std::vector<std::pair<std::string, std::string>>{
+           {"Residual friction angle", "40"},
+           {"Residual cohesion", "1"},
+           {"Residual plastic shear strain", "0.005"}})
+      {
+        std::string text = parameters(Case(), 10);
+        const auto  at   = text.find("set " + entry + " = ");
+        text.replace(at,
+                     text.find('\n', at) - at,
+                     "set " + entry + " = " + value);
+        bool thrown = false;
+        try
+          {
+            MaterialPointDriver::from_text(text);
+          }
+        catch (const MPM::InputError &error)
+          {
+            thrown = std::string(error.what()).find(entry) != std::string::npos;
+          }
+        check(thrown, entry + " = " + value + " is an input error naming it");
+      }
     {
-      std::string text = parameters(Case(), 10);
-      const auto  at   = text.find("set " + entry + " = ");
-      text.replace(at, text.find('\n', at) - at, "set " + entry + " = " + value);
-      bool thrown = false;
+      // Two regularisations of the same softening.
+      Case both                = cohesion;
+      both.reference_cell_size = 0.5;
+      both.nonlocal_radius     = 2;
+      bool thrown              = false;
       try
         {
-          MaterialPointDriver::from_text(text);
+          MaterialPointDriver::from_text(parameters(both, 10));
         }
       catch (const MPM::InputError &error)
         {
-          thrown = std::string(error.what()).find(entry) != std::string::npos;
+          const std::string what = error.what();
+          thrown = what.find("Nonlocal radius") != std::string::npos &&
+                   what.find("Reference cell size") != std::string::npos;
         }
-      check(thrown, entry + " = " + value + " is an input error naming it");
+      check(thrown,
+            "Reference cell size and Nonlocal radius both > 0 is an input "
+            "error naming both");
     }
-  {
-    // Two regularisations of the same softening.
-    Case both                = cohesion;
-    both.reference_cell_size = 0.5;
-    both.nonlocal_radius     = 2;
-    bool thrown              = false;
-    try
-      {
-        MaterialPointDriver::from_text(parameters(both, 10));
-      }
-    catch (const MPM::InputError &error)
-      {
-        const std::string what = error.what();
-        thrown = what.find("Nonlocal radius") != std::string::npos &&
-                 what.find("Reference cell size") != std::string::npos;
-      }
-    check(thrown,
-          "Reference cell size and Nonlocal radius both > 0 is an input "
-          "error naming both");
+    return summary();
   }
-  return summary();
-}
+} // namespace unit_mohr_coulomb_softening
+
+MPM_UNIT_TEST_REGISTER(mohr_coulomb_softening)

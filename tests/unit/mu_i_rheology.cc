@@ -19,12 +19,12 @@
 #include <memory>
 #include <string>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialModels::MuIRheology;
-
-namespace
+namespace unit_mu_i_rheology
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialModels::MuIRheology;
+
   constexpr double E = 2e6, nu = 0.3, d = 5e-4, rho_s = 2450, I0 = 0.279;
   constexpr double phi_s = 20.9, phi_2 = 32.76;
 
@@ -66,16 +66,16 @@ namespace
         de[0][1] = 0.5 * rate * dt;
         // Long enough for the elastic loading to reach yield and settle
         // (G = 0.77 MPa: yield after tau / (G gamma_dot) s).
-        const unsigned int n_steps =
-          static_cast<unsigned int>(std::max(2e3, 5 * 1e3 / (7.7e5 * rate * dt)));
+        const unsigned int n_steps = static_cast<unsigned int>(
+          std::max(2e3, 5 * 1e3 / (7.7e5 * rate * dt)));
         for (unsigned int n = 0; n < n_steps; ++n)
           model->update_stress(de, stress, ArrayView<double>(state, 2), dt);
         const double I     = rate * d / std::sqrt(p / rho_s);
         const double ratio = stress[0][1] / (-trace(stress) / 3);
         std::cout << "  gamma_dot = " << rate << " 1/s: I = " << I
-                  << ", tau / p = " << ratio << ", mu(I) = "
-                  << model->friction(I) << ", reported I = " << state[1]
-                  << '\n';
+                  << ", tau / p = " << ratio
+                  << ", mu(I) = " << model->friction(I)
+                  << ", reported I = " << state[1] << '\n';
         check(std::abs(ratio - model->friction(I)) < 1e-8,
               "tau / p = mu(I) in steady shear");
         check(std::abs(state[1] - I) < 1e-8 * (1 + I),
@@ -90,7 +90,7 @@ namespace
   test_elastic_and_separated()
   {
     std::cout << "below the static friction, and in tension:\n";
-    const auto            model = make_model();
+    const auto                         model = make_model();
     MPM::MaterialModels::LinearElastic elastic;
     {
       ParameterHandler prm;
@@ -103,7 +103,7 @@ namespace
     for (unsigned int a = 0; a < 3; ++a)
       s_mu[a][a] = s_le[a][a] = -1000;
     SymmetricTensor<2, 3> de;
-    de[0][1] = 1e-5; // tau = 2 G de_xy = 15 Pa << mu_s p = 382 Pa
+    de[0][1]        = 1e-5; // tau = 2 G de_xy = 15 Pa << mu_s p = 382 Pa
     double state[2] = {0, 0};
     model->update_stress(de, s_mu, ArrayView<double>(state, 2), 1e-4);
     elastic.update_stress(de, s_le, ArrayView<double>(), 1e-4);
@@ -142,16 +142,18 @@ namespace
     check(refused(0, 20, d), "zero static friction refused");
     check(refused(20, 30, 0), "zero grain diameter refused");
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-5\n";
-  std::cout << std::setprecision(6);
-  test_steady_shear();
-  test_elastic_and_separated();
-  test_input_errors();
-  return UnitTest::summary();
-}
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-5\n";
+    std::cout << std::setprecision(6);
+    test_steady_shear();
+    test_elastic_and_separated();
+    test_input_errors();
+    return UnitTest::summary();
+  }
+} // namespace unit_mu_i_rheology
+
+MPM_UNIT_TEST_REGISTER(mu_i_rheology)

@@ -29,11 +29,11 @@
 #include <random>
 #include <vector>
 
-using namespace dealii;
-using namespace UnitTest;
-
-namespace
+namespace unit_nonlocal_averaging
 {
+  using namespace dealii;
+  using namespace UnitTest;
+
   template <int dim>
   struct Cloud
   {
@@ -51,7 +51,7 @@ namespace
     std::mt19937                           random(seed);
     std::uniform_real_distribution<double> unit(0., 1.);
     Cloud<dim>                             cloud;
-    const unsigned int n = static_cast<unsigned int>(L / h);
+    const unsigned int                     n = static_cast<unsigned int>(L / h);
     const unsigned int total = static_cast<unsigned int>(std::pow(n, dim));
     for (unsigned int i = 0; i < total; ++i)
       {
@@ -128,7 +128,7 @@ namespace
     auto cloud = make_cloud<dim>(h, L, 1);
     for (auto &v : cloud.value)
       v = 0.3;
-    const auto averages = grid_averages(cloud, radius);
+    const auto          averages = grid_averages(cloud, radius);
     std::vector<double> constant(averages.size(), 0.3);
     const double        error = max_difference(averages, constant);
     std::cout << "  " << dim << "D, " << cloud.x.size()
@@ -146,14 +146,15 @@ namespace
     for (unsigned int p = 0; p < cloud.x.size(); ++p)
       cloud.value[p] = std::sin(2 * M_PI * cloud.x[p][0] / L) *
                        std::cos(2 * M_PI * cloud.x[p][1] / L);
-    double smooth =
-      max_difference(grid_averages(cloud, radius), pair_averages(cloud, radius)) / 2;
+    double smooth = max_difference(grid_averages(cloud, radius),
+                                   pair_averages(cloud, radius)) /
+                    2;
     // Localised: a band |y - x| < R / 4 with v = 1, 0 elsewhere.
     for (unsigned int p = 0; p < cloud.x.size(); ++p)
       cloud.value[p] =
         std::abs(cloud.x[p][1] - cloud.x[p][0]) < radius / 4 ? 1. : 0.;
-    double band =
-      max_difference(grid_averages(cloud, radius), pair_averages(cloud, radius));
+    double band = max_difference(grid_averages(cloud, radius),
+                                 pair_averages(cloud, radius));
     std::cout << std::setprecision(3) << "  grid against the pair sum, "
               << cloud.x.size() << " points, R = 6 h:\n"
               << "    smooth field, largest difference / range: " << smooth
@@ -181,14 +182,14 @@ namespace
     cloud.x.push_back(Point<2>(40, 40));
     cloud.volume.push_back(1);
     cloud.value.push_back(5);
-    auto after = grid_averages(cloud, radius);
-    const double far = after.back();
+    auto         after = grid_averages(cloud, radius);
+    const double far   = after.back();
     after.pop_back();
     const double change = max_difference(before, after);
     std::cout << "  moved by (7, -3) spacings with a far point added: "
                  "largest change "
-              << flush_to_zero(change, 1e-12) << ", far point's average "
-              << far << '\n';
+              << flush_to_zero(change, 1e-12) << ", far point's average " << far
+              << '\n';
     check(change < 1e-12, "the averages do not depend on the box");
     check(std::abs(far - 5) < 1e-14, "a lone point keeps its value");
   }
@@ -201,7 +202,7 @@ namespace
     auto         cloud  = make_cloud<2>(0.02, 2, 4);
     for (unsigned int p = 0; p < cloud.x.size(); ++p)
       cloud.value[p] = std::abs(cloud.x[p][1] - 1) < 0.1 ? 1. : 0.01;
-    const auto one_by_one = grid_averages(cloud, radius);
+    const auto                       one_by_one = grid_averages(cloud, radius);
     std::vector<std::vector<double>> by_threads;
     for (const unsigned int threads : {1u, 2u})
       {
@@ -225,19 +226,21 @@ namespace
           "the same averages on 1 and 2 threads, bit for bit");
     check(round_off < 1e-13, "the same sums as one by one, to round-off");
   }
-} // namespace
 
-int
-main()
-{
-  std::cout << "Constant fields:\n";
-  check_constant<2>(0.05, 1, 0.2);
-  check_constant<3>(0.1, 1, 0.35);
-  std::cout << "Accuracy of the grid:\n";
-  check_against_pair_sum();
-  std::cout << "Independence of the box:\n";
-  check_translation();
-  std::cout << "Threads:\n";
-  check_threads();
-  return summary();
-}
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "Constant fields:\n";
+    check_constant<2>(0.05, 1, 0.2);
+    check_constant<3>(0.1, 1, 0.35);
+    std::cout << "Accuracy of the grid:\n";
+    check_against_pair_sum();
+    std::cout << "Independence of the box:\n";
+    check_translation();
+    std::cout << "Threads:\n";
+    check_threads();
+    return summary();
+  }
+} // namespace unit_nonlocal_averaging
+
+MPM_UNIT_TEST_REGISTER(nonlocal_averaging)

@@ -23,12 +23,12 @@
 #include <sstream>
 #include <string>
 
-using namespace dealii;
-using namespace UnitTest;
-using MPM::MaterialPointDriver;
-
-namespace
+namespace unit_strength_reduction
 {
+  using namespace dealii;
+  using namespace UnitTest;
+  using MPM::MaterialPointDriver;
+
   constexpr double degree = M_PI / 180.;
   constexpr double p0     = 1e5;
   constexpr double phi    = 30;
@@ -80,91 +80,95 @@ namespace
     const auto history = MaterialPointDriver::from_text(text).run_path();
     return -history.records.back().stress[1][1];
   }
-} // namespace
 
 
-int
-main()
-{
-  std::cout << "# numdiff: -a 1e-9 -r 1e-6\n" << std::setprecision(10);
-  const std::string dp_fit = "      set Fit to Mohr-Coulomb = compression\n";
-  const std::string softening =
-    "      subsection Strain softening\n"
-    "        set Enabled = true\n"
-    "        set Residual friction angle = 20\n"
-    "        set Residual cohesion = 5000\n"
-    "        set Peak plastic shear strain = 0\n"
-    "        set Residual plastic shear strain = 0.01\n"
-    "      end\n";
-  for (const double F : {1., 1.25, 1.5, 2.})
-    {
-      const double phi_F =
-        std::atan(std::tan(phi * degree) / F) / degree;
-      const double exact = failure_stress(phi_F, c / F);
-      const double mc =
-        final_axial_stress(parameters("mohr coulomb", std::to_string(F)));
-      const double dp = final_axial_stress(
-        parameters("drucker prager", std::to_string(F), dp_fit));
-      // Residual phi 20, c 5 kPa, reduced by F as well.
-      const double exact_residual = failure_stress(
-        std::atan(std::tan(20 * degree) / F) / degree, 5000 / F);
-      const double mc_softened = final_axial_stress(
-        parameters("mohr coulomb", std::to_string(F), softening));
-      std::cout << "F = " << F << ": phi_F = " << phi_F
-                << " deg; sigma_a / p0 exact " << exact / p0
-                << ", mohr coulomb error " << flush_to_zero((mc - exact) / p0, 1e-12)
-                << ", drucker prager (compression fit) error "
-                << flush_to_zero((dp - exact) / p0, 1e-12)
-                << "; residual exact " << exact_residual / p0
-                << ", softening mohr coulomb error "
-                << flush_to_zero((mc_softened - exact_residual) / p0, 1e-12)
-                << '\n';
-      check(std::abs(mc - exact) < 1e-10 * p0 &&
-              std::abs(dp - exact) < 1e-10 * p0 &&
-              std::abs(mc_softened - exact_residual) < 1e-10 * p0,
-            "the reduced strengths are reached (1e-10 p0)");
-    }
-
-  // F = 1 through a function of t: the model is not touched.
-  check(final_axial_stress(parameters("mohr coulomb", "1")) ==
-          final_axial_stress(parameters("mohr coulomb", "1 + 0 * t")),
-        "F = 1 as a function gives the unreduced result bit for bit");
-
-  MPM::MaterialModels::FrictionalStrength strength;
-  strength.friction_angle = 30 * degree;
-  strength.dilation_angle = 25 * degree;
-  strength.cohesion       = 1e4;
-  strength.tension_cutoff = 1e4;
-  const auto reduced      = strength.reduced(2);
-  std::cout << "phi 30, psi 25, F = 2: phi_F = "
-            << reduced.friction_angle / degree
-            << ", psi_F = " << reduced.dilation_angle / degree << '\n';
-  check(reduced.dilation_angle == reduced.friction_angle &&
-          std::abs(reduced.cohesion - 5e3) < 1e-12 &&
-          std::abs(reduced.tension_cutoff - 5e3) < 1e-12,
-        "psi is capped at phi_F; c and T are halved");
-
-  std::cout << "input errors\n";
-  const auto input_error = [](const std::string &text, const std::string &needle) {
-    try
+  int
+  run(int /*argc*/, char ** /*argv*/)
+  {
+    std::cout << "# numdiff: -a 1e-9 -r 1e-6\n" << std::setprecision(10);
+    const std::string dp_fit = "      set Fit to Mohr-Coulomb = compression\n";
+    const std::string softening =
+      "      subsection Strain softening\n"
+      "        set Enabled = true\n"
+      "        set Residual friction angle = 20\n"
+      "        set Residual cohesion = 5000\n"
+      "        set Peak plastic shear strain = 0\n"
+      "        set Residual plastic shear strain = 0.01\n"
+      "      end\n";
+    for (const double F : {1., 1.25, 1.5, 2.})
       {
-        MaterialPointDriver::from_text(text);
+        const double phi_F = std::atan(std::tan(phi * degree) / F) / degree;
+        const double exact = failure_stress(phi_F, c / F);
+        const double mc =
+          final_axial_stress(parameters("mohr coulomb", std::to_string(F)));
+        const double dp = final_axial_stress(
+          parameters("drucker prager", std::to_string(F), dp_fit));
+        // Residual phi 20, c 5 kPa, reduced by F as well.
+        const double exact_residual =
+          failure_stress(std::atan(std::tan(20 * degree) / F) / degree,
+                         5000 / F);
+        const double mc_softened = final_axial_stress(
+          parameters("mohr coulomb", std::to_string(F), softening));
+        std::cout << "F = " << F << ": phi_F = " << phi_F
+                  << " deg; sigma_a / p0 exact " << exact / p0
+                  << ", mohr coulomb error "
+                  << flush_to_zero((mc - exact) / p0, 1e-12)
+                  << ", drucker prager (compression fit) error "
+                  << flush_to_zero((dp - exact) / p0, 1e-12)
+                  << "; residual exact " << exact_residual / p0
+                  << ", softening mohr coulomb error "
+                  << flush_to_zero((mc_softened - exact_residual) / p0, 1e-12)
+                  << '\n';
+        check(std::abs(mc - exact) < 1e-10 * p0 &&
+                std::abs(dp - exact) < 1e-10 * p0 &&
+                std::abs(mc_softened - exact_residual) < 1e-10 * p0,
+              "the reduced strengths are reached (1e-10 p0)");
       }
-    catch (const MPM::InputError &error)
-      {
-        std::cout << "  " << error.what() << '\n';
-        return std::string(error.what()).find(needle) != std::string::npos;
-      }
-    return false;
-  };
-  check(input_error(parameters("mohr coulomb", "1 - t - 1"),
-                    "Strength reduction factor"),
-        "a factor <= 0 is an input error naming the parameter");
-  check(input_error(parameters("linear elastic", "1.5"),
-                    "no material has a frictional strength"),
-        "a reduction without a frictional material is an input error");
-  check(input_error(parameters("mohr coulomb", "1 +* t"),
-                    "Strength reduction factor"),
-        "a malformed expression is an input error naming the parameter");
-  return summary();
-}
+
+    // F = 1 through a function of t: the model is not touched.
+    check(final_axial_stress(parameters("mohr coulomb", "1")) ==
+            final_axial_stress(parameters("mohr coulomb", "1 + 0 * t")),
+          "F = 1 as a function gives the unreduced result bit for bit");
+
+    MPM::MaterialModels::FrictionalStrength strength;
+    strength.friction_angle = 30 * degree;
+    strength.dilation_angle = 25 * degree;
+    strength.cohesion       = 1e4;
+    strength.tension_cutoff = 1e4;
+    const auto reduced      = strength.reduced(2);
+    std::cout << "phi 30, psi 25, F = 2: phi_F = "
+              << reduced.friction_angle / degree
+              << ", psi_F = " << reduced.dilation_angle / degree << '\n';
+    check(reduced.dilation_angle == reduced.friction_angle &&
+            std::abs(reduced.cohesion - 5e3) < 1e-12 &&
+            std::abs(reduced.tension_cutoff - 5e3) < 1e-12,
+          "psi is capped at phi_F; c and T are halved");
+
+    std::cout << "input errors\n";
+    const auto input_error = [](const std::string &text,
+                                const std::string &needle) {
+      try
+        {
+          MaterialPointDriver::from_text(text);
+        }
+      catch (const MPM::InputError &error)
+        {
+          std::cout << "  " << error.what() << '\n';
+          return std::string(error.what()).find(needle) != std::string::npos;
+        }
+      return false;
+    };
+    check(input_error(parameters("mohr coulomb", "1 - t - 1"),
+                      "Strength reduction factor"),
+          "a factor <= 0 is an input error naming the parameter");
+    check(input_error(parameters("linear elastic", "1.5"),
+                      "no material has a frictional strength"),
+          "a reduction without a frictional material is an input error");
+    check(input_error(parameters("mohr coulomb", "1 +* t"),
+                      "Strength reduction factor"),
+          "a malformed expression is an input error naming the parameter");
+    return summary();
+  }
+} // namespace unit_strength_reduction
+
+MPM_UNIT_TEST_REGISTER(strength_reduction)

@@ -2,11 +2,20 @@
 #define mpm_tests_unit_test_tools_h
 
 // What every unit test in this folder shares: checks that print what they
-// check and count failures, round-off printed as 0, and the summary line
-// whose exit code ctest sees.
+// check and count failures, round-off printed as 0, the summary line whose
+// exit code ctest sees, and the registry through which the one executable
+// `unit_tests NAME` runs the test NAME.
+//
+// The tests are one executable (built as a unity build) rather than one per
+// file: each executable would parse deal.II's headers on its own, and the
+// seventeen of them took about two minutes of a fresh Debug build. Each test
+// runs in its own process all the same (ctest starts `unit_tests NAME`), so a
+// test that initialises MPI still does it once per process.
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
+#include <map>
 #include <string>
 
 namespace UnitTest
@@ -38,6 +47,40 @@ namespace UnitTest
               << '\n';
     return n_failed == 0 ? 0 : 1;
   }
+
+  /// A test's body: what `main(argc, argv)` would be in an executable of
+  /// its own; its return value is the process's exit code.
+  using TestFunction = int (*)(int argc, char **argv);
+
+  /// Every test of the executable, by name (the file's name without .cc).
+  inline std::map<std::string, TestFunction> &
+  registry()
+  {
+    static std::map<std::string, TestFunction> tests;
+    return tests;
+  }
+
+  /// Registers a test at static initialisation (MPM_UNIT_TEST_REGISTER).
+  struct Registration
+  {
+    Registration(const std::string &name, const TestFunction function)
+    {
+      if (!registry().emplace(name, function).second)
+        {
+          std::cerr << "unit test '" << name << "' is registered twice\n";
+          std::abort();
+        }
+    }
+  };
 } // namespace UnitTest
+
+/// Registers `unit_NAME::run` as the test NAME; after the test's namespace,
+/// at the end of tests/unit/NAME.cc.
+#define MPM_UNIT_TEST_REGISTER(NAME)                        \
+  namespace                                                 \
+  {                                                         \
+    const UnitTest::Registration                            \
+      unit_##NAME##_registration(#NAME, &unit_##NAME::run); \
+  }
 
 #endif
