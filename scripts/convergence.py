@@ -41,7 +41,7 @@ Examples:
   scripts/convergence.py prm/column_collapse.prm --out output-conv-collapse
   scripts/convergence.py prm/flume_usgs.prm --set "Time stepping/End time=1"
   scripts/convergence.py prm/slope_runout.prm --levels 4 --reuse
-(doc/convergence.md, "The convergence command")."""
+(doc/convergence_command.md)."""
 import argparse
 import csv
 import math

@@ -28,17 +28,16 @@
 #                     height against the aspect ratio a = 0.5 ... 6, 5 mm,
 #                     with Lube et al.'s law, scripts/column_collapse_sweep.sh
 #                     (doc/column_collapse.md). 2-4 min.
-#   column_collapse_apic_cpdi
-#                     doc/column_collapse_apic_cpdi.png (and .csv): the same
-#                     with APIC on CPDI weights (doc/transfers.md). 13 min.
-#   column_collapse_shipped_2p5mm
-#                     doc/column_collapse_shipped_2p5mm.png (and .csv): the
-#                     shipped file on 2.5 mm cells, a = 0.5, 1, 3, 4, 6 (a = 2
-#                     is in doc/column_collapse.md's convergence table).
-#                     13 min.
 #   column_collapse_apic_cpdi_2p5mm
 #                     doc/column_collapse_apic_cpdi_2p5mm.png (and .csv):
-#                     APIC + CPDI on 2.5 mm, a = 3, 1, 4, 6, 0.5. 1.8 hours.
+#                     the shipped file's path, APIC on CPDI weights, on
+#                     2.5 mm, a = 3, 1, 4, 6, 0.5. 1.8 hours.
+#   column_collapse_blend_2p5mm
+#                     doc/column_collapse_blend_2p5mm.png (and .csv): the
+#                     FLIP/PIC blend 0.98 per 6e-5 s on linear weights (an
+#                     option; doc/column_collapse.md, "The blend 0.98 per
+#                     6e-5 s on 5 and 2.5 mm") on 2.5 mm, a = 0.5, 1, 3, 4,
+#                     6. 13 min.
 #   convergence       doc/convergence.png (and convergence_bar.csv,
 #                     convergence_column.csv): vibrating bar and self-weight
 #                     column under refinement, linear and CPDI weights,
@@ -84,8 +83,8 @@ doc="$MPM_ROOT/doc"
 python=/usr/bin/python3
 
 quick=(flume sliding_block landslide hazard_rasters column_collapse)
-every=(flume sliding_block landslide hazard_rasters column_collapse column_collapse_apic_cpdi
-       column_collapse_shipped_2p5mm column_collapse_apic_cpdi_2p5mm
+every=(flume sliding_block landslide hazard_rasters column_collapse
+       column_collapse_apic_cpdi_2p5mm column_collapse_blend_2p5mm
        convergence speed_error slope_stability slope_runout shear_band)
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=("${quick[@]}")
@@ -98,6 +97,9 @@ work="${MPM_FIGURE_WORK_DIR:-output-doc-figures}"
 mkdir -p "$work"
 cd "$work"
 apic_cpdi=(--set "Transfer/Scheme=apic" --set "Transfer/Particle-grid weights=cpdi")
+blend_per_6e5=(--set "Transfer/Scheme=flip/pic blend" --set "Transfer/FLIP fraction=0.98"
+               --set "Transfer/FLIP fraction time step=6e-5"
+               --set "Transfer/Particle-grid weights=linear")
 
 for f in "${figures[@]}"; do
   echo "== $f"
@@ -124,10 +126,8 @@ for f in "${figures[@]}"; do
         "$MPM_ROOT/meshes/valley_utm.asc" "$doc/hazard_rasters.png" ;;
     column_collapse)
       "$scripts/column_collapse_sweep.sh" ;;
-    column_collapse_apic_cpdi)
-      MPM_SWEEP_NAME=apic_cpdi "$scripts/column_collapse_sweep.sh" "0.5 1 2 3 4 6" "${apic_cpdi[@]}" ;;
-    column_collapse_shipped_2p5mm)
-      MPM_CELL_SIZE=0.0025 MPM_SWEEP_NAME=shipped_2p5mm "$scripts/column_collapse_sweep.sh" "0.5 1 3 4 6" ;;
+    column_collapse_blend_2p5mm)
+      MPM_CELL_SIZE=0.0025 MPM_SWEEP_NAME=blend_2p5mm "$scripts/column_collapse_sweep.sh" "0.5 1 3 4 6" "${blend_per_6e5[@]}" ;;
     column_collapse_apic_cpdi_2p5mm)
       MPM_CELL_SIZE=0.0025 MPM_SWEEP_NAME=apic_cpdi_2p5mm "$scripts/column_collapse_sweep.sh" "3 1 4 6 0.5" "${apic_cpdi[@]}" ;;
     convergence)
