@@ -52,6 +52,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Sections created once per name from a list ('List of materials', ...): the
 # name is compared as a wildcard.
 PER_NAME_SECTIONS = {"Materials", "Material points", "Boundary conditions"}
+# Subsections of a per-name section that are not user-named: their own
+# entries, written as they are.
+FIXED_SUBSECTIONS = {("Boundary conditions", "Side walls")}
 
 # Keys whose value selects a plugin or a kind of object: the prm files read
 # for the parameter tree together select every value any prm file selects.
@@ -160,7 +163,7 @@ def parse_parameter_listing(text, sections=None):
 def normalise(path):
     """The path with the per-name component as a wildcard."""
     path = tuple(path)
-    if len(path) > 2 and path[0] in PER_NAME_SECTIONS:
+    if len(path) > 2 and path[0] in PER_NAME_SECTIONS and path[:2] not in FIXED_SUBSECTIONS:
         return (path[0], "*") + path[2:]
     return path
 

@@ -47,7 +47,7 @@ import tempfile
 import time
 
 import check_docs
-from check_docs import ROOT, PER_NAME_SECTIONS
+from check_docs import ROOT, PER_NAME_SECTIONS, FIXED_SUBSECTIONS
 
 # The entry that lists the names of each per-name section.
 NAME_LISTS = {"Materials": "List of materials", "Material points": "List of regions",
@@ -122,7 +122,8 @@ def parse_listing(text):
 def normalise(path, section=False):
     """The path of an entry (or of a section) with the name of a per-name
     section as '<name>'."""
-    if path[0] in PER_NAME_SECTIONS and len(path) > (1 if section else 2):
+    if (path[0] in PER_NAME_SECTIONS and len(path) > (1 if section else 2)
+            and tuple(path[:2]) not in FIXED_SUBSECTIONS):
         return (path[0], "<name>") + tuple(path[2:])
     return tuple(path)
 

@@ -36,6 +36,11 @@ namespace MPM
       split_name_list(prm.get("List of boundaries"),
                       "Boundary conditions/List of boundaries");
     prm.leave_subsection();
+    for (const auto &name : names)
+      check_input(name != "Side walls",
+                  "'Boundary conditions/List of boundaries' names a boundary "
+                  "'Side walls': that subsection is the side-wall friction's "
+                  "(SideWallFriction); give the boundary another name.");
     return names;
   }
 

@@ -22,9 +22,22 @@ namespace MPM
           cell->get_dof_indices(cell_dofs);
           auto &local = table[tria_cell->active_cell_index()];
           for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int c = 0; c < dim; ++c)
-              local[v][c] = partitioner.global_to_local(
-                cell_dofs[grid.fe.component_to_system_index(c, v)]);
+            {
+              for (unsigned int c = 0; c < dim; ++c)
+                local[v][c] = partitioner.global_to_local(
+                  cell_dofs[grid.fe.component_to_system_index(c, v)]);
+              // deal.II numbers a vertex's dim components consecutively,
+              // a rank owns all of a vertex's, and the partitioner keeps
+              // owned and ghost entries in global order: a node's
+              // components are the local entries dim k ... dim k + dim - 1,
+              // which per-node loops over the entries rely on
+              // (SideWallFriction::apply()).
+              for (unsigned int c = 0; c < dim; ++c)
+                AssertThrow(local[v][c] == local[v][0] + c &&
+                              local[v][0] % dim == 0,
+                            ExcMessage("A node's components are not the "
+                                       "nodal-vector entries dim k + c."));
+            }
         }
   }
 

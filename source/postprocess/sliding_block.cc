@@ -73,6 +73,17 @@ namespace MPM
                           "a = g (sin theta - f mu cos theta) with f = "
                           "(rho_sat - rho_w) / rho_sat of the block's "
                           "material (doc/pore_water.md). Coulomb beds only.");
+        prm.declare_entry(
+          "Side-wall resistance",
+          "0",
+          Patterns::Double(0),
+          "With 'Boundary conditions/Side walls' (a channel of width W, "
+          "wall friction mu_w): the walls' friction as a share of the "
+          "block's weight normal to the bed, r = mu_w k H / W for a block of "
+          "thickness H whose out-of-plane stress sigma_zz is k times the "
+          "overburden normal to the bed: a = g (sin theta - (mu + r) cos "
+          "theta) (doc/boundary_conditions.md, 'Side-wall friction'). "
+          "Coulomb beds only.");
       }
 
       void
@@ -83,6 +94,7 @@ namespace MPM
         error_from = prm.get_double("Error from time");
         thickness  = prm.get_double("Block thickness");
         buoyant    = prm.get_bool("Buoyant block");
+        side_walls = prm.get_double("Side-wall resistance");
       }
 
       void
@@ -92,8 +104,9 @@ namespace MPM
         const double mu = law->friction_coefficient();
         g               = simulator.get_time_stepping().gravity.norm();
         set_reference_gravity(simulator);
-        acceleration =
-          std::max(0., g * (std::sin(theta) - f * mu * std::cos(theta)));
+        acceleration = std::max(0.,
+                                g * (std::sin(theta) -
+                                     (f * mu + side_walls) * std::cos(theta)));
         // The dip direction: gravity's component along the bed, whose
         // normal is the mean of the frictional nodes' normals (the bed is
         // the scene's only frictional boundary and a plane).
@@ -114,13 +127,20 @@ namespace MPM
         t0              = s.time;
         std::ostringstream header;
         header << "## sliding block: theta = " << theta * 180 / M_PI
-                      << " deg, mu = " << mu
-                      << (buoyant ? ", buoyant: f = " : "")
-                      << (buoyant ? std::to_string(f) : std::string())
-                      << (buoyant ? ", a = g (sin theta - f mu cos theta) = " :
-                                    ", a = g (sin theta - mu cos theta) = ")
-                      << acceleration << " m/s^2"
-                      << (acceleration == 0 ? " (sticks)" : "") << '\n';
+               << " deg, mu = " << mu << (buoyant ? ", buoyant: f = " : "")
+               << (buoyant ? std::to_string(f) : std::string())
+               << (side_walls > 0 ?
+                     ", side walls r = " + std::to_string(side_walls) :
+                     std::string())
+               << (buoyant ?
+                     (side_walls > 0 ?
+                        ", a = g (sin theta - (f mu + r) cos theta) = " :
+                        ", a = g (sin theta - f mu cos theta) = ") :
+                     (side_walls > 0 ?
+                        ", a = g (sin theta - (mu + r) cos theta) = " :
+                        ", a = g (sin theta - mu cos theta) = "))
+               << acceleration << " m/s^2"
+               << (acceleration == 0 ? " (sticks)" : "") << '\n';
         if (law->rate_dependent())
           header << "## basal law: " << law->description()
                  << "; block thickness " << thickness
@@ -146,8 +166,13 @@ namespace MPM
         // A buoyant block: Coulomb's law on the buoyant weight is that of
         // a dry block under a gravity g' whose normal part is f times
         // smaller, g' (sin theta', cos theta') = g (sin theta, f cos theta).
+        // With side walls (a Coulomb bed), the constant acceleration of
+        // initialize().
         const auto [v_exact, d_exact] =
-          law->rigid_block_motion(t, g_reference, theta_reference, thickness);
+          side_walls > 0 ?
+            std::pair<double, double>(acceleration * t,
+                                      0.5 * acceleration * t * t) :
+            law->rigid_block_motion(t, g_reference, theta_reference, thickness);
         const double v_error  = v_exact > 0 ? (v - v_exact) / v_exact : v;
         const double d_error  = d_exact > 0 ? (d - d_exact) / d_exact : d;
         if (t >= error_from * (1 - 1e-12))
@@ -236,6 +261,9 @@ namespace MPM
       set_reference_gravity(const Simulator<dim> &simulator)
       {
         f = 1;
+        check_input(side_walls == 0 || !law->rate_dependent(),
+                    "Postprocess/sliding block/Side-wall resistance needs a "
+                    "Coulomb bed.");
         if (buoyant)
           {
             check_input(!law->rate_dependent(),
@@ -281,6 +309,8 @@ namespace MPM
       const CoulombFriction<dim> frictionless{0.};
       double             theta = 0, error_from = 0.1, acceleration = 0, t0 = 0;
       double             thickness = 1, g = 0;
+      /// The side walls' friction as a share of the weight normal to the bed.
+      double             side_walls = 0;
       std::string        bed;
       /// The bed's basal law (the Simulator's, alive for the whole run).
       const BasalLaw<dim> *law = nullptr;

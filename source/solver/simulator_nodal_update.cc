@@ -91,6 +91,16 @@ namespace MPM
                                          nodal.velocity_new,
                                          nodal.acceleration,
                                          dt);
+    if (side_walls.active())
+      {
+        TimerOutput::Scope t(timer, "side walls");
+        weights->map_phase(side_walls);
+        side_walls.apply(nodal.mass,
+                         nodal.velocity_new,
+                         nodal.acceleration,
+                         weights->active_dofs(),
+                         dt);
+      }
     for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) +=
         dt * nodal.acceleration.local_element(i);

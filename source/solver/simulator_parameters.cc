@@ -47,6 +47,7 @@ namespace MPM
     LostPoints<dim>::declare_parameters(prm);
     PointRelocation<dim>::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm, names.boundaries);
+    SideWallFriction<dim>::declare_parameters(prm);
     TimeSteppingParameters<dim>::declare_parameters(prm);
     VelocityTransfer<dim>::declare_parameters(prm);
     ParticleGridWeights<dim>::declare_parameters(prm);
@@ -84,6 +85,7 @@ namespace MPM
     lost_points.parse_parameters(prm);
     point_relocation.parse_parameters(prm);
     boundary_conditions.parse_parameters(prm);
+    side_walls.parse_parameters(prm);
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
     transfer.scheme().add_nodal_fields(nodal);

@@ -8,16 +8,19 @@
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/boundary_conditions/boundary_conditions.h>
+#include <mpm/boundary_conditions/side_wall_friction.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/cell_dof_table.h>
 #include <mpm/grid/nodal_vector.h>
+#include <mpm/material_points/nonlocal_averaging.h>
 #include <mpm/material_points/point_generator.h>
 #include <mpm/material_points/point_properties.h>
 #include <mpm/material_points/point_relocation.h>
+#include <mpm/material_points/point_update.h>
 #include <mpm/materials/material_library.h>
 #include <mpm/output/output_writer.h>
-#include <mpm/phases/pore_water.h>
 #include <mpm/parallel/load_balancing.h>
+#include <mpm/phases/pore_water.h>
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/restart/checkpointing.h>
 #include <mpm/solver/lost_points.h>
@@ -26,8 +29,6 @@
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/statistics_file.h>
 #include <mpm/solver/time_stepping.h>
-#include <mpm/material_points/nonlocal_averaging.h>
-#include <mpm/material_points/point_update.h>
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/velocity_transfer.h>
 
@@ -382,6 +383,8 @@ namespace MPM
     PointGenerator<dim>             point_generator;
     PointRelocation<dim>            point_relocation;
     BoundaryConditions<dim>         boundary_conditions;
+    /// The friction of a 2D channel's side walls (not in the mesh).
+    SideWallFriction<dim>           side_walls;
     TimeSteppingParameters<dim>     time_stepping;
     VelocityTransfer<dim>           transfer;
     /// The first property slot of the transfer scheme's point data.

@@ -35,5 +35,6 @@ MPM_REGISTER_STEP_SCHEME(MPM::UpdateStressFirst,
                          "USF",
                          "Update Stress First: the stress from the velocity "
                          "the points brought, before the nodal momentum "
-                         "update (with the FLIP/PIC blend unstable where "
-                         "granular flow stops against a base, doc/flume.md).")
+                         "update, the paper's scheme (on the flume: noise "
+                         "at rest, and unstable at the runout in one "
+                         "measured configuration; doc/flume.md, \"USF\").")
