@@ -14,13 +14,15 @@ namespace MPM
   using namespace dealii;
 
   /**
-   * What a phase other than the solid skeleton (PoreWater) maps between its
-   * points and the grid, through the weights of the step
-   * (ParticleGridWeights::map_phase(), update_phase_points()): the passes
-   * loop over the entries of every weight function and the kernel says,
-   * per point and weight set, what it adds to its nodal fields and what it
-   * does with the nodal values interpolated back. The dry passes do not
-   * know it: a scene without a second phase pays nothing for it.
+   * What a component other than the solid skeleton's own passes maps
+   * between the points and the grid, through the weights of the step
+   * (ParticleGridWeights::map_phase(), update_phase_points()): a second
+   * phase (PoreWater), or a load the points carry to the nodes
+   * (SideWallFriction). The passes loop over the entries of every weight
+   * function and the kernel says, per point and weight set, what it adds
+   * to its nodal fields and what it does with the nodal values
+   * interpolated back. The dry passes do not know it: a scene without such
+   * a component pays nothing for it.
    *
    * The calls are virtual per entry: a two-phase step pays a call per
    * point and pass, small beside its arithmetic.
