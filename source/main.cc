@@ -12,68 +12,15 @@
 
 #include <mpm/base/input_deck.h>
 #include <mpm/base/input_error.h>
-#include <mpm/materials/material_point_driver.h>
-#include <mpm/solver/simulator.h>
+#include <mpm/solver/run_from_command_line.h>
 
-#include <fstream>
 #include <iostream>
-
-namespace
-{
-  using namespace dealii;
-  using namespace MPM;
-
-  template <int dim>
-  int
-  run(const CommandLine &cl, const MPI_Comm comm)
-  {
-    // Pass 1: the lists of names that decide which subsections exist.
-    ParameterHandler names_prm;
-    Simulator<dim>::declare_name_lists(names_prm);
-    for (const auto &file : cl.parameter_files)
-      parse_parameter_file(names_prm, file, true);
-    apply_overrides(names_prm, cl.overrides, true);
-    const auto names = Simulator<dim>::read_name_lists(names_prm);
-
-    // Pass 2: everything, strictly.
-    ParameterHandler prm;
-    Simulator<dim>::declare_parameters(prm, names);
-    MaterialPointDriver::declare_parameters(prm);
-    for (const auto &file : cl.parameter_files)
-      parse_parameter_file(prm, file, false);
-    apply_overrides(prm, cl.overrides, false);
-
-    if (cl.print_parameters)
-      {
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
-          prm.print_parameters(std::cout, ParameterHandler::PRM);
-        return 0;
-      }
-
-    if (cl.material_point_driver)
-      {
-        // One material point, no mesh: on the first rank only.
-        MaterialPointDriver driver;
-        driver.parse_parameters(prm);
-        if (Utilities::MPI::this_mpi_process(comm) == 0)
-          driver.run();
-        return 0;
-      }
-
-    Simulator<dim> simulator(comm);
-    simulator.parse_parameters(prm,
-                               cl.parameter_files.empty() ?
-                                 std::string(".") :
-                                 directory_of(cl.parameter_files.front()));
-    simulator.run();
-    return 0;
-  }
-} // namespace
 
 
 int
 main(int argc, char **argv)
 {
+  using namespace dealii;
   using namespace MPM;
   try
     {
@@ -100,8 +47,8 @@ main(int argc, char **argv)
             parse_parameter_file(dim_prm, file, true);
           apply_overrides(dim_prm, cl.overrides, true);
           return dim_prm.get_integer("Dimension") == 2 ?
-                   run<2>(cl, MPI_COMM_WORLD) :
-                   run<3>(cl, MPI_COMM_WORLD);
+                   run_from_command_line<2>(cl, MPI_COMM_WORLD) :
+                   run_from_command_line<3>(cl, MPI_COMM_WORLD);
         }
       catch (const InputError &e)
         {
