@@ -97,8 +97,7 @@ namespace MPM
   template <int dim>
   void
   SideWallFriction<dim>::apply(const NodalVector               &mass,
-                               const NodalVector               &velocity,
-                               NodalVector                     &acceleration,
+                               NodalVector                     &velocity,
                                const std::vector<unsigned int> &active_dofs,
                                const double                     dt) const
   {
@@ -115,15 +114,13 @@ namespace MPM
           continue;
         Tensor<1, dim> trial;
         for (unsigned int c = 0; c < dim; ++c)
-          trial[c] = velocity.local_element(i + c) +
-                     dt * acceleration.local_element(i + c);
+          trial[c] = velocity.local_element(i + c);
         const double speed         = trial.norm();
         const double speed_removed = dt * L / m;
         const double scale =
           speed <= speed_removed ? 0. : 1. - speed_removed / speed;
         for (unsigned int c = 0; c < dim; ++c)
-          acceleration.local_element(i + c) =
-            (scale * trial[c] - velocity.local_element(i + c)) / dt;
+          velocity.local_element(i + c) = scale * trial[c];
       }
   }
 

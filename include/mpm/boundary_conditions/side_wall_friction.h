@@ -29,8 +29,9 @@ namespace MPM
    * the particle-to-grid pass sums each node's capacity
    * L_i = sum_p N_ip V_p (2 mu_w / W) sigma_n,p (a pass through the
    * PhaseKernel seam: a scene without side walls pays nothing), and the
-   * nodal update reduces the node's in-plane trial velocity v* by at most
-   * dt L_i / m_i along it, stopping the node if that is more than |v*|
+   * nodal update reduces the node's in-plane velocity v* (after the
+   * mesh's walls have constrained it) by at most dt L_i / m_i along it,
+   * stopping the node if that is more than |v*|
    * (backward Euler of Coulomb's law: no reversal within a step, static
    * friction at rest). So a layer at rest stays at rest, and the walls only
    * ever remove kinetic energy.
@@ -93,16 +94,15 @@ namespace MPM
 
     /**
      * The walls' friction on the nodes @p active_dofs (local entries, all
-     * components of each node): with u the velocity the points brought and
-     * a the acceleration so far, the trial velocity u + dt a of each node
-     * is slowed by dt L_i / m_i, or stopped; @p acceleration becomes the
-     * one that gives the slowed velocity. A node's components are
-     * consecutive entries (CellDofTable checks it).
+     * components of each node): each node's @p velocity, the end-of-step
+     * velocity the mesh's walls have constrained (the trial velocity of
+     * the walls' Coulomb law), is slowed by dt L_i / m_i along itself, or
+     * stopped. A node's components are consecutive entries (CellDofTable
+     * checks it).
      */
     void
     apply(const NodalVector               &mass,
-          const NodalVector               &velocity,
-          NodalVector                     &acceleration,
+          NodalVector                     &velocity,
           const std::vector<unsigned int> &active_dofs,
           const double                     dt) const;
 
