@@ -20,14 +20,12 @@ file(MAKE_DIRECTORY ${WORKDIR})
 # set-up probes the network. MPI_Init then takes 0.06 s instead of 0.45 s
 # (Open MPI 4.1, 2026-11-28); a few hundred tests start mpm. Neither
 # changes what the ranks compute or exchange.
-foreach(_setting ess_singleton_isolated=1 pml=ob1)
-  string(REPLACE "=" ";" _pair ${_setting})
-  list(GET _pair 0 _key)
-  list(GET _pair 1 _value)
-  if(NOT DEFINED ENV{OMPI_MCA_${_key}})
-    set(ENV{OMPI_MCA_${_key}} ${_value})
-  endif()
-endforeach()
+if(NOT DEFINED ENV{OMPI_MCA_ess_singleton_isolated})
+  set(ENV{OMPI_MCA_ess_singleton_isolated} 1)
+endif()
+if(NOT DEFINED ENV{OMPI_MCA_pml})
+  set(ENV{OMPI_MCA_pml} ob1)
+endif()
 
 set(_numdiff_options -a 1e-10 -r 1e-8)
 if(PRM)

@@ -94,7 +94,7 @@ namespace MPM
         error_from = prm.get_double("Error from time");
         thickness  = prm.get_double("Block thickness");
         buoyant    = prm.get_bool("Buoyant block");
-        side_walls = prm.get_double("Side-wall resistance");
+        side_wall_resistance = prm.get_double("Side-wall resistance");
       }
 
       void
@@ -104,9 +104,10 @@ namespace MPM
         const double mu = law->friction_coefficient();
         g               = simulator.get_time_stepping().gravity.norm();
         set_reference_gravity(simulator);
-        acceleration = std::max(0.,
-                                g * (std::sin(theta) -
-                                     (f * mu + side_walls) * std::cos(theta)));
+        acceleration =
+          std::max(0.,
+                   g * (std::sin(theta) -
+                        (f * mu + side_wall_resistance) * std::cos(theta)));
         // The dip direction: gravity's component along the bed, whose
         // normal is the mean of the frictional nodes' normals (the bed is
         // the scene's only frictional boundary and a plane).
@@ -126,20 +127,20 @@ namespace MPM
         x0              = s.centre_of_mass;
         t0              = s.time;
         std::ostringstream header;
+        // The reference's formula as used: f for a buoyant block, r for
+        // side walls.
+        const std::string friction = buoyant ? "f mu" : "mu";
+        const std::string resistance =
+          side_wall_resistance > 0 ? "(" + friction + " + r)" : friction;
         header << "## sliding block: theta = " << theta * 180 / M_PI
-               << " deg, mu = " << mu << (buoyant ? ", buoyant: f = " : "")
-               << (buoyant ? std::to_string(f) : std::string())
-               << (side_walls > 0 ?
-                     ", side walls r = " + std::to_string(side_walls) :
-                     std::string())
-               << (buoyant ?
-                     (side_walls > 0 ?
-                        ", a = g (sin theta - (f mu + r) cos theta) = " :
-                        ", a = g (sin theta - f mu cos theta) = ") :
-                     (side_walls > 0 ?
-                        ", a = g (sin theta - (mu + r) cos theta) = " :
-                        ", a = g (sin theta - mu cos theta) = "))
-               << acceleration << " m/s^2"
+               << " deg, mu = " << mu
+               << (buoyant ? ", buoyant: f = " + std::to_string(f) : "")
+               << (side_wall_resistance > 0 ?
+                     ", side walls r = " +
+                       std::to_string(side_wall_resistance) :
+                     "")
+               << ", a = g (sin theta - " << resistance
+               << " cos theta) = " << acceleration << " m/s^2"
                << (acceleration == 0 ? " (sticks)" : "") << '\n';
         if (law->rate_dependent())
           header << "## basal law: " << law->description()
@@ -169,7 +170,7 @@ namespace MPM
         // With side walls (a Coulomb bed), the constant acceleration of
         // initialize().
         const auto [v_exact, d_exact] =
-          side_walls > 0 ?
+          side_wall_resistance > 0 ?
             std::pair<double, double>(acceleration * t,
                                       0.5 * acceleration * t * t) :
             law->rigid_block_motion(t, g_reference, theta_reference, thickness);
@@ -261,7 +262,7 @@ namespace MPM
       set_reference_gravity(const Simulator<dim> &simulator)
       {
         f = 1;
-        check_input(side_walls == 0 || !law->rate_dependent(),
+        check_input(side_wall_resistance == 0 || !law->rate_dependent(),
                     "Postprocess/sliding block/Side-wall resistance needs a "
                     "Coulomb bed.");
         if (buoyant)
@@ -310,7 +311,7 @@ namespace MPM
       double             theta = 0, error_from = 0.1, acceleration = 0, t0 = 0;
       double             thickness = 1, g = 0;
       /// The side walls' friction as a share of the weight normal to the bed.
-      double             side_walls = 0;
+      double             side_wall_resistance = 0;
       std::string        bed;
       /// The bed's basal law (the Simulator's, alive for the whole run).
       const BasalLaw<dim> *law = nullptr;
