@@ -19,10 +19,11 @@ namespace MPM
       "2D only: the width W (m) of the channel between two side walls "
       "parallel to the scene's plane (a laboratory collapse or flume), which "
       "resist the in-plane motion with Coulomb friction 'Friction "
-      "coefficient' times the material's out-of-plane stress -sigma_zz: a "
-      "force (2 mu_w / W) max(0, -sigma_zz) per unit volume, applied at the "
-      "nodes like wall friction (doc/boundary_conditions.md, 'Side-wall "
-      "friction'). 0: no side walls.");
+      "coefficient' times the material's out-of-plane stress -sigma_zz (the "
+      "effective stress of a saturated material): a force (2 mu_w / W) "
+      "max(0, -sigma_zz) per unit volume, applied at the nodes like wall "
+      "friction (doc/boundary_conditions.md, 'Side-wall friction'). 0: no "
+      "side walls.");
     prm.declare_entry("Friction coefficient",
                       "0",
                       Patterns::Double(0),

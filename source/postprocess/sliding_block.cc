@@ -82,8 +82,10 @@ namespace MPM
           "block's weight normal to the bed, r = mu_w k H / W for a block of "
           "thickness H whose out-of-plane stress sigma_zz is k times the "
           "overburden normal to the bed: a = g (sin theta - (mu + r) cos "
-          "theta) (doc/boundary_conditions.md, 'Side-wall friction'). "
-          "Coulomb beds only.");
+          "theta) (doc/boundary_conditions.md, 'Side-wall friction'). A "
+          "buoyant block's sigma_zz is effective, k times the buoyant "
+          "overburden: r = f mu_w k H / W and a = g (sin theta - (f mu + r) "
+          "cos theta). Coulomb beds only.");
       }
 
       void

@@ -53,10 +53,6 @@ namespace MPM
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
     side_walls.initialize(nodal);
-    check_input(!(side_walls.active() && pore_water.active()),
-                "'Boundary conditions/Side walls' with a saturated material: "
-                "side-wall friction on the effective stress is not "
-                "implemented.");
     if (!pore_water.active())
       for (const std::string &name : boundary_conditions.pore_pressure_boundaries())
         throw InputError("Boundary conditions/" + name +

@@ -36,8 +36,12 @@ namespace MPM
    * friction at rest). So a layer at rest stays at rest, and the walls only
    * ever remove kinetic energy.
    *
-   * A 3D scene meshes its side walls and gives them 'Type = friction'; pore
-   * water is not supported (the walls would carry the effective stress).
+   * With pore water sigma_zz is the effective stress the points store
+   * (Terzaghi: the water's pressure pushes on the walls without friction),
+   * and the friction acts on the skeleton's nodal velocity after the
+   * coupled solve with the water, as a mesh wall's Coulomb friction does;
+   * the water follows through the next step's drag. A 3D scene meshes its
+   * side walls and gives them 'Type = friction'.
    */
   template <int dim>
   class SideWallFriction : public PhaseKernel<dim>
