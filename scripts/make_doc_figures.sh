@@ -4,7 +4,8 @@
 #
 # Usage: scripts/make_doc_figures.sh [figure ...]
 #   (no argument: the quick ones, "flume sliding_block landslide
-#   hazard_rasters column_collapse"; "all": every figure below, several hours)
+#   hazard_rasters column_collapse consolidation dam_break"; "all": every
+#   figure below, several hours)
 #
 # Figures (time on one core of a shared 2-core machine, roughly):
 #   flume             doc/flume_runout.png, flume_velocity.png, flume_points.png:
@@ -63,6 +64,22 @@
 #                     local and non-local (R = 0.2 m) on 0.1, 0.05, 0.025 m
 #                     cells, scripts/plot_slope_stability.py band
 #                     (doc/slope_stability.md). About 7 min.
+#   consolidation     doc/terzaghi_consolidation.png: prm/terzaghi_consolidation.prm,
+#                     the points' excess pore pressure at T = 0.05 ... 1
+#                     against Terzaghi's series, scripts/plot_pore_water.py
+#                     (doc/pore_water.md). 10 s.
+#   dam_break         doc/dam_break.png: prm/dam_break.prm on a / 10 and
+#                     a / 20 cells, the surge front against Martin and
+#                     Moyce, scripts/plot_pore_water.py (doc/pore_water.md).
+#                     30 s.
+#   slope_pore_pressure
+#                     doc/infinite_slope_pore_pressure.png (and
+#                     slope_stability_pore_pressure_r0/1/2.csv): the factor
+#                     of safety of prm/infinite_slope_pore_pressure.prm
+#                     bisected on 0.5, 0.25, 0.125 m cells against Davis'
+#                     closed form, scripts/strength_reduction.sh and
+#                     scripts/plot_pore_water.py (doc/slope_stability.md).
+#                     About 8 min.
 #
 # Environment:
 #   MPM_PREBUILT_DIR  a build holding mpm (and libmpm-core.so beside it):
@@ -82,10 +99,12 @@ scripts="$MPM_ROOT/scripts"
 doc="$MPM_ROOT/doc"
 python=/usr/bin/python3
 
-quick=(flume sliding_block landslide hazard_rasters column_collapse)
+quick=(flume sliding_block landslide hazard_rasters column_collapse
+       consolidation dam_break)
 every=(flume sliding_block landslide hazard_rasters column_collapse
        column_collapse_apic_cpdi_2p5mm column_collapse_blend_2p5mm
-       convergence speed_error slope_stability slope_runout shear_band)
+       convergence speed_error slope_stability slope_runout shear_band
+       consolidation dam_break slope_pore_pressure)
 figures=("$@")
 [ ${#figures[@]} -gt 0 ] || figures=("${quick[@]}")
 [ "${figures[*]}" != all ] || figures=("${every[@]}")
@@ -169,6 +188,32 @@ for f in "${figures[@]}"; do
         "band-R0-r0:local, 0.1 m cells" "band-R0-r1:local, 0.05 m" "band-R0-r2:local, 0.025 m" \
         "band-R0.2-r0:non-local R = 0.2 m, 0.1 m cells" "band-R0.2-r1:non-local, 0.05 m" \
         "band-R0.2-r2:non-local, 0.025 m" ;;
+    consolidation)
+      "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/terzaghi_consolidation.prm" \
+        --set "Output/Directory=consolidation" > consolidation.log
+      grep '^T at U' consolidation/report.txt
+      "$python" "$scripts/plot_pore_water.py" consolidation \
+        "$doc/terzaghi_consolidation.png" consolidation ;;
+    dam_break)
+      for r in 0 1; do
+        "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/dam_break.prm" \
+          --set "Mesh/Global refinements=$r" --set "Output/Write particles=false" \
+          --set "Output/Directory=dam-break-r$r" > dam-break-r$r.log
+      done
+      grep '^largest' dam-break-r0/report.txt
+      "$python" "$scripts/plot_pore_water.py" dam_break "$doc/dam_break.png" \
+        "dam-break-r0/report.txt:a / 10 cells (the shipped file)" \
+        "dam-break-r1/report.txt:a / 20 cells" ;;
+    slope_pore_pressure)
+      prm="$MPM_ROOT/prm/infinite_slope_pore_pressure.prm"
+      MPM_SRM_NAME=pore_pressure_r0 "$scripts/strength_reduction.sh" "$prm" 1.0 1.2 0.005 | tail -1
+      MPM_SRM_NAME=pore_pressure_r1 "$scripts/strength_reduction.sh" "$prm" 1.07 1.11 0.005 \
+        --set "Mesh/Global refinements=1" | tail -1
+      MPM_SRM_NAME=pore_pressure_r2 "$scripts/strength_reduction.sh" "$prm" 1.07 1.09 0.005 \
+        --set "Mesh/Global refinements=2" | tail -1
+      "$python" "$scripts/plot_pore_water.py" slope_pore_pressure \
+        "$doc/infinite_slope_pore_pressure.png" "$doc/slope_stability_pore_pressure_r0.csv:0.5" \
+        "$doc/slope_stability_pore_pressure_r1.csv:0.25" "$doc/slope_stability_pore_pressure_r2.csv:0.125" ;;
   esac
   echo "== $f: $((SECONDS - start)) s"
 done
