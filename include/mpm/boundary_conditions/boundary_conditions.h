@@ -259,7 +259,12 @@ namespace MPM
      * without the drag, R_w0 = m_w v_w.n / dt + F_w.n, which the water's
      * momentum balance makes n_i p A: p A = R_w0 / n_i, the pressure on
      * the wall itself, not the nodal average of the points' pressures
-     * (half a cell above it). Edge nodes (3D) take the skeleton's reaction.
+     * (half a cell above it). On a drained wall the water passes, the
+     * pressure is the wall's 'Pore pressure' (0 without one), whose push
+     * the phases' forces hold already, and the effective normal force is
+     * the skeleton's reaction plus the drag's normal force on the water
+     * within the step (the share of the skeleton's push the drag moved
+     * to the water). Edge nodes (3D) take the skeleton's reaction.
      */
     /**
      * The pore water at the nodes, for friction in effective stress: its
@@ -403,6 +408,10 @@ namespace MPM
     /// For each node of nodes: its index in water_nodes, or
     /// numbers::invalid_unsigned_int (the water is free there).
     std::vector<unsigned int> water_node_of_node;
+    /// Whether the pore water passes the wall of node @p k (an index of
+    /// nodes): a drained wall, whose water is not held along the normal.
+    bool
+    water_drains_at(const unsigned int k) const;
     /// Each frictional wall node's share of its walls' area, A_i =
     /// int_wall N_i dA (zero elsewhere): what turns the pore pressure on
     /// the wall into a nodal force (apply_friction()).
