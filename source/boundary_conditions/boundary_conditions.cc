@@ -568,6 +568,9 @@ namespace MPM
               relief = (own_push / n_i - reaction_after_drag) /
                        mass.local_element(i0);
           }
+        std::array<double, 2> edge_relief{{0., 0.}};
+        if (water != nullptr && node.edge_friction)
+          edge_relief = edge_pore_water_relief(k, *water, mass, dt);
         a = node.frictional ?
               WallFriction::frictional_acceleration(v,
                                                     a,
@@ -578,18 +581,76 @@ namespace MPM
                                                     &sticks,
                                                     held,
                                                     relief) :
-                        WallFriction::edge_frictional_acceleration(v,
-                                                                   a,
-                                                                   node.edge_normals,
-                                                                   node.edge_laws,
-                                                                   node.edge_geometry,
-                                                                   dt,
-                                                                   &sticks);
+              WallFriction::edge_frictional_acceleration(v,
+                                                         a,
+                                                         node.edge_normals,
+                                                         node.edge_laws,
+                                                         node.edge_geometry,
+                                                         dt,
+                                                         &sticks,
+                                                         edge_relief);
         if (sticks)
           contact_state[k] = ContactState::stuck;
         for (unsigned int c = 0; c < dim; ++c)
           acceleration.local_element(node.local_dofs[c]) = a[c];
       }
+  }
+
+
+  template <int dim>
+  std::array<double, 2>
+  BoundaryConditions<dim>::edge_pore_water_relief(const unsigned int      k,
+                                                  const PoreWaterAtNodes &water,
+                                                  const NodalVector      &mass,
+                                                  const double dt) const
+  {
+    // apply_friction()'s relief, wall by wall: a vector u is split onto
+    // the two walls' normals n_j by the Gram system G c = (u.n_0, u.n_1),
+    // as WallFriction::edge_frictional_acceleration() splits the
+    // skeleton's push.
+    const auto           &node = nodes[k];
+    const auto           &n    = node.edge_normals;
+    const double          g01  = n[0] * n[1];
+    const double          det  = 1 - g01 * g01;
+    std::array<double, 2> relief{{0., 0.}};
+    const unsigned int    i0  = node.local_dofs[0];
+    const double          m_w = water.mass.local_element(i0);
+    const double          m_s = mass.local_element(i0);
+    if (det <= 0 || m_w <= 0 || m_s <= 0)
+      return relief;
+    const auto split = [&](const Tensor<1, dim> &u) {
+      const double u0 = u * n[0], u1 = u * n[1];
+      return std::array<double, 2>{
+        {(u0 - g01 * u1) / det, (u1 - g01 * u0) / det}};
+    };
+    Tensor<1, dim> v_w, v_w_new, F_w;
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        const unsigned int i = node.local_dofs[c];
+        v_w[c]               = water.brought_velocity.local_element(i);
+        v_w_new[c]           = water.new_velocity.local_element(i);
+        F_w[c]               = water.force.local_element(i);
+      }
+    const double n_i = water.porosity.local_element(i0);
+    // The water's own push on each wall (without the drag), its push
+    // after the drag, and the drag's force on it, per wall.
+    const auto         own   = split(m_w * v_w / dt + F_w);
+    const auto         after = split(m_w * v_w_new / dt);
+    const auto         drag  = split(m_w * (v_w_new - v_w) / dt - F_w);
+    const unsigned int w =
+      has_drained_walls ? water_node_of_node[k] : numbers::invalid_unsigned_int;
+    for (unsigned int j = 0; j < 2; ++j)
+      {
+        const bool drains =
+          has_drained_walls && (w == numbers::invalid_unsigned_int ||
+                                (water_nodes[w].projector * n[j]) * n[j] > 0.5);
+        if (drains)
+          relief[j] = -drag[j] / m_s;
+        else if (n_i > 0)
+          relief[j] =
+            (std::max(own[j], 0.) / n_i - std::max(after[j], 0.)) / m_s;
+      }
+    return relief;
   }
 
 

@@ -80,7 +80,8 @@ namespace MPM
       const std::array<const BasalLaw<dim> *, 2> &laws,
       const std::array<WallNodeGeometry, 2>      &geometry,
       const double                                dt,
-      bool *const                                 sticks)
+      bool *const                                 sticks,
+      const std::array<double, 2>                &relief)
     {
       if (sticks != nullptr)
         *sticks = false;
@@ -99,7 +100,12 @@ namespace MPM
       for (unsigned int j = 0; j < 2; ++j)
         if (laws[j] != nullptr)
           {
-            capacity += laws[j]->static_capacity(std::max(0., -lambda[j]), 1.);
+            // The rate-independent resistance of wall j takes its
+            // effective normal impulse: the wall's less what the pore
+            // water carries (relief per unit mass and time, as in
+            // frictional_acceleration()).
+            capacity += laws[j]->static_capacity(
+              std::max(0., -lambda[j] - dt * relief[j]), 1.);
             rate_dependent |= laws[j]->rate_dependent() && lambda[j] < 0;
           }
       if (capacity <= 0 && !rate_dependent)
@@ -156,7 +162,8 @@ namespace MPM
                                  const std::array<const BasalLaw<2> *, 2> &,
                                  const std::array<WallNodeGeometry, 2> &,
                                  const double,
-                                 bool *const);
+                                 bool *const,
+                                 const std::array<double, 2> &);
     template Tensor<1, 3>
     edge_frictional_acceleration(const Tensor<1, 3> &,
                                  const Tensor<1, 3> &,
@@ -164,6 +171,7 @@ namespace MPM
                                  const std::array<const BasalLaw<3> *, 2> &,
                                  const std::array<WallNodeGeometry, 2> &,
                                  const double,
-                                 bool *const);
+                                 bool *const,
+                                 const std::array<double, 2> &);
   } // namespace WallFriction
 } // namespace MPM

@@ -264,7 +264,9 @@ namespace MPM
      * the phases' forces hold already, and the effective normal force is
      * the skeleton's reaction plus the drag's normal force on the water
      * within the step (the share of the skeleton's push the drag moved
-     * to the water). Edge nodes (3D) take the skeleton's reaction.
+     * to the water). At a 3D edge node each wall's friction takes its own
+     * effective normal force: the phases' pushes split onto the two
+     * walls' normals (edge_pore_water_relief()).
      */
     /**
      * The pore water at the nodes, for friction in effective stress: its
@@ -412,6 +414,13 @@ namespace MPM
     /// nodes): a drained wall, whose water is not held along the normal.
     bool
     water_drains_at(const unsigned int k) const;
+    /// apply_friction()'s pore-water relief at the 3D edge node @p k, for
+    /// each of its two walls (per unit skeleton mass and time).
+    std::array<double, 2>
+    edge_pore_water_relief(const unsigned int      k,
+                           const PoreWaterAtNodes &water,
+                           const NodalVector      &mass,
+                           const double            dt) const;
     /// Each frictional wall node's share of its walls' area, A_i =
     /// int_wall N_i dA (zero elsewhere): what turns the pore pressure on
     /// the wall into a nodal force (apply_friction()).

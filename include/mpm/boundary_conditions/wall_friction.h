@@ -67,17 +67,22 @@ namespace MPM
      * is sum_j mu_j max(0, -lambda_j) over the walls with a law
      * (@p laws[j] nullptr for a slip wall), and the rate-dependent parts
      * of the pushing walls act on the remaining speed along the edge.
+     * With pore water, @p relief[j] (per unit mass and time, as in
+     * frictional_acceleration()) is what wall j's push holds beyond the
+     * effective normal force: its impulse counts as
+     * max(0, -lambda_j - dt relief_j).
      */
     template <int dim>
     Tensor<1, dim>
     edge_frictional_acceleration(
-      const Tensor<1, dim>                  &v,
-      const Tensor<1, dim>                  &a,
-      const std::array<Tensor<1, dim>, 2>   &n,
+      const Tensor<1, dim>                       &v,
+      const Tensor<1, dim>                       &a,
+      const std::array<Tensor<1, dim>, 2>        &n,
       const std::array<const BasalLaw<dim> *, 2> &laws,
-      const std::array<WallNodeGeometry, 2> &geometry,
-      const double                           dt,
-      bool *const                            sticks = nullptr);
+      const std::array<WallNodeGeometry, 2>      &geometry,
+      const double                                dt,
+      bool *const                                 sticks = nullptr,
+      const std::array<double, 2>                &relief = {{0., 0.}});
   } // namespace WallFriction
 } // namespace MPM
 
