@@ -229,6 +229,32 @@ namespace MPM
       const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
         &gradients) const override;
+
+    /// With 'Pressure rate averaging = cell'.
+    bool
+    averages_over_cells() const override
+    {
+      return average_pressure_rate;
+    }
+
+    /// The point's volumetric rate (1 - n) div v_s + n div v_w and its
+    /// volume (0 for a dry point).
+    std::pair<double, double>
+    cell_rate(
+      const double                                                    *props,
+      const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
+      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
+        &gradients) const override;
+
+    /// update_point() with the pressure's rate @p cell_mean (NaN: the
+    /// point's own).
+    void
+    update_point_with_cell_mean(
+      double                                                          *props,
+      const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
+      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
+                  &gradients,
+      const double cell_mean) const override;
     /// @}
 
     /// @name The water's parameters.
@@ -281,6 +307,8 @@ namespace MPM
 
     double         time_step     = 0;
     double         flip_fraction = 0;
+    /// 'Pressure rate averaging = cell'.
+    bool               average_pressure_rate = false;
     Tensor<1, dim> gravity;
     const NodalVector *skeleton_velocity = nullptr;
 

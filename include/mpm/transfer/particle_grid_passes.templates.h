@@ -793,30 +793,59 @@ namespace MPM
               }
           }
     };
+    using Values          = std::array<Tensor<1, dim>, n_sources>;
+    using Gradients       = std::array<Tensor<2, dim>, n_sources>;
+    const bool cell_means = kernel.averages_over_cells();
     if constexpr (Weights::entries_are_points)
-      for_each_chunk(this->active_cells.size(),
-                     this->cell_chunk_size,
-                     [&](const unsigned int,
-                         const unsigned int first,
-                         const unsigned int last) {
-                       for (unsigned int c = first; c < last; ++c)
-                         {
-                           const ActiveCell  &cell = this->active_cells[c];
-                           const unsigned int end =
-                             cell.first_entry + cell.n_points;
-                           for (unsigned int k = cell.first_entry; k < end;
-                                ++k)
-                             {
-                               std::array<Tensor<1, dim>, n_sources> values;
-                               std::array<Tensor<2, dim>, n_sources> gradients;
-                               add_entry(cell, k, values.data(),
-                                         gradients.data());
-                               kernel.update_point(this->points[k],
-                                                   values,
-                                                   gradients);
-                             }
-                         }
-                     });
+      for_each_chunk(
+        this->active_cells.size(),
+        this->cell_chunk_size,
+        [&](const unsigned int,
+            const unsigned int first,
+            const unsigned int last) {
+          std::vector<std::pair<Values, Gradients>> cell_points;
+          for (unsigned int c = first; c < last; ++c)
+            {
+              const ActiveCell  &cell = this->active_cells[c];
+              const unsigned int end  = cell.first_entry + cell.n_points;
+              if (cell_means)
+                {
+                  // The cell's points' values first, then
+                  // the mean of their rates, then each
+                  // point's update.
+                  cell_points.assign(cell.n_points, {});
+                  double sum = 0, weight = 0;
+                  for (unsigned int k = cell.first_entry; k < end; ++k)
+                    {
+                      auto &[values, gradients] =
+                        cell_points[k - cell.first_entry];
+                      add_entry(cell, k, values.data(), gradients.data());
+                      const auto [rate, w] =
+                        kernel.cell_rate(this->points[k], values, gradients);
+                      sum += w * rate;
+                      weight += w;
+                    }
+                  const double mean = weight > 0 ? sum / weight : 0.;
+                  for (unsigned int k = cell.first_entry; k < end; ++k)
+                    {
+                      const auto &[values, gradients] =
+                        cell_points[k - cell.first_entry];
+                      kernel.update_point_with_cell_mean(this->points[k],
+                                                         values,
+                                                         gradients,
+                                                         mean);
+                    }
+                  continue;
+                }
+              for (unsigned int k = cell.first_entry; k < end; ++k)
+                {
+                  std::array<Tensor<1, dim>, n_sources> values;
+                  std::array<Tensor<2, dim>, n_sources> gradients;
+                  add_entry(cell, k, values.data(), gradients.data());
+                  kernel.update_point(this->points[k], values, gradients);
+                }
+            }
+        });
     else
       {
         // A point's entries lie in several cells: summed per point first
@@ -838,6 +867,45 @@ namespace MPM
                           &phase_values[p * n_sources],
                           &phase_gradients[p * n_sources]);
               }
+          }
+        const auto point_sums = [&](const unsigned int p) {
+          std::pair<Values, Gradients> sums;
+          for (unsigned int s = 0; s < n_sources; ++s)
+            {
+              sums.first[s]  = phase_values[std::size_t(p) * n_sources + s];
+              sums.second[s] = phase_gradients[std::size_t(p) * n_sources + s];
+            }
+          return sums;
+        };
+        if (cell_means)
+          {
+            // The mean of the rates over the points of each point's own
+            // cell (point_cell_begin), then each point's update.
+            for_point_cells([&](const unsigned int c, const unsigned int) {
+              double sum = 0, weight = 0;
+              for (unsigned int p = point_cell_begin[c];
+                   p < point_cell_begin[c + 1];
+                   ++p)
+                {
+                  const auto [values, gradients] = point_sums(p);
+                  const auto [rate, w] =
+                    kernel.cell_rate(this->points[p], values, gradients);
+                  sum += w * rate;
+                  weight += w;
+                }
+              const double mean = weight > 0 ? sum / weight : 0.;
+              for (unsigned int p = point_cell_begin[c];
+                   p < point_cell_begin[c + 1];
+                   ++p)
+                {
+                  const auto [values, gradients] = point_sums(p);
+                  kernel.update_point_with_cell_mean(this->points[p],
+                                                     values,
+                                                     gradients,
+                                                     mean);
+                }
+            });
+            return;
           }
         for_each_chunk(n_points,
                        chunk_size_for(n_points),

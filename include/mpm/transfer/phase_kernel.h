@@ -8,6 +8,7 @@
 #include <mpm/grid/q1_shape_functions.h>
 
 #include <array>
+#include <utility>
 
 namespace MPM
 {
@@ -75,6 +76,44 @@ namespace MPM
                  const std::array<Tensor<1, dim>, max_sources> &values,
                  const std::array<Tensor<2, dim>, max_sources> &gradients)
       const = 0;
+
+    /**
+     * Whether the update takes, beside the point's own values, the mean
+     * over the points of its own cell of a scalar rate (cell_rate()):
+     * then update_point_with_cell_mean() is called instead of
+     * update_point(). false by default: the passes then do exactly what
+     * they do for update_point().
+     */
+    virtual bool
+    averages_over_cells() const
+    {
+      return false;
+    }
+
+    /// A point's rate for the cell mean and its weight (e.g. its volume).
+    virtual std::pair<double, double>
+    cell_rate(const double                                  *props,
+              const std::array<Tensor<1, dim>, max_sources> &values,
+              const std::array<Tensor<2, dim>, max_sources> &gradients) const
+    {
+      (void)props;
+      (void)values;
+      (void)gradients;
+      return {0., 0.};
+    }
+
+    /// update_point() with the weighted mean @p cell_mean of cell_rate()
+    /// over the points of the point's own cell.
+    virtual void
+    update_point_with_cell_mean(
+      double                                        *props,
+      const std::array<Tensor<1, dim>, max_sources> &values,
+      const std::array<Tensor<2, dim>, max_sources> &gradients,
+      const double                                   cell_mean) const
+    {
+      (void)cell_mean;
+      update_point(props, values, gradients);
+    }
   };
 } // namespace MPM
 
