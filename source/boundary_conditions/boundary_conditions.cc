@@ -544,29 +544,15 @@ namespace MPM
         double relief = 0;
         if (water != nullptr && node.frictional)
           {
-            const unsigned int i0  = node.local_dofs[0];
-            const double       m_w = water->mass.local_element(i0);
-            const double       n_i = water->porosity.local_element(i0);
-            Tensor<1, dim>     v_w, v_w_new, F_w;
-            for (unsigned int c = 0; c < dim; ++c)
-              {
-                const unsigned int i = node.local_dofs[c];
-                v_w[c]     = water->brought_velocity.local_element(i);
-                v_w_new[c] = water->new_velocity.local_element(i);
-                F_w[c]     = water->force.local_element(i);
-              }
-            const double own_push =
-              std::max(m_w * (v_w * node.normal) / dt + F_w * node.normal,
-                       0.);
-            const double reaction_after_drag =
-              m_w * std::max(v_w_new * node.normal, 0.) / dt;
-            if (water_drains_at(k))
-              relief = -(m_w * ((v_w_new - v_w) * node.normal) / dt -
-                         F_w * node.normal) /
-                       mass.local_element(i0);
-            else if (n_i > 0)
-              relief = (own_push / n_i - reaction_after_drag) /
-                       mass.local_element(i0);
+            const NodeWater       w = node_water(node, *water);
+            const Tensor<1, dim> &n = node.normal;
+            relief = pore_water_relief(water_drains_along(k, n),
+                                       w.m_w * (w.v_w * n) / dt + w.F_w * n,
+                                       w.m_w * (w.v_w_new * n) / dt,
+                                       w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
+                                         w.F_w * n,
+                                       w.n_i,
+                                       mass.local_element(node.local_dofs[0]));
           }
         std::array<double, 2> edge_relief{{0., 0.}};
         if (water != nullptr && node.edge_friction)
@@ -613,50 +599,66 @@ namespace MPM
     const double          g01  = n[0] * n[1];
     const double          det  = 1 - g01 * g01;
     std::array<double, 2> relief{{0., 0.}};
-    const unsigned int    i0  = node.local_dofs[0];
-    const double          m_w = water.mass.local_element(i0);
-    const double          m_s = mass.local_element(i0);
-    if (det <= 0 || m_w <= 0 || m_s <= 0)
+    const NodeWater       w   = node_water(node, water);
+    const double          m_s = mass.local_element(node.local_dofs[0]);
+    if (det <= 0 || w.m_w <= 0 || m_s <= 0)
       return relief;
     const auto split = [&](const Tensor<1, dim> &u) {
       const double u0 = u * n[0], u1 = u * n[1];
       return std::array<double, 2>{
         {(u0 - g01 * u1) / det, (u1 - g01 * u0) / det}};
     };
-    Tensor<1, dim> v_w, v_w_new, F_w;
-    for (unsigned int c = 0; c < dim; ++c)
-      {
-        const unsigned int i = node.local_dofs[c];
-        v_w[c]               = water.brought_velocity.local_element(i);
-        v_w_new[c]           = water.new_velocity.local_element(i);
-        F_w[c]               = water.force.local_element(i);
-      }
-    const double n_i = water.porosity.local_element(i0);
     // The water's own push on each wall (without the drag), its push
     // after the drag, and the drag's force on it, per wall.
-    const auto         own   = split(m_w * v_w / dt + F_w);
-    const auto         after = split(m_w * v_w_new / dt);
-    const auto         drag  = split(m_w * (v_w_new - v_w) / dt - F_w);
-    const unsigned int w =
-      has_drained_walls ? water_node_of_node[k] : numbers::invalid_unsigned_int;
+    const auto own   = split(w.m_w * w.v_w / dt + w.F_w);
+    const auto after = split(w.m_w * w.v_w_new / dt);
+    const auto drag  = split(w.m_w * (w.v_w_new - w.v_w) / dt - w.F_w);
     for (unsigned int j = 0; j < 2; ++j)
-      {
-        const bool drains =
-          has_drained_walls && (w == numbers::invalid_unsigned_int ||
-                                (water_nodes[w].projector * n[j]) * n[j] > 0.5);
-        if (drains)
-          relief[j] = -drag[j] / m_s;
-        else if (n_i > 0)
-          relief[j] =
-            (std::max(own[j], 0.) / n_i - std::max(after[j], 0.)) / m_s;
-      }
+      relief[j] = pore_water_relief(
+        water_drains_along(k, n[j]), own[j], after[j], drag[j], w.n_i, m_s);
     return relief;
   }
 
 
   template <int dim>
+  typename BoundaryConditions<dim>::NodeWater
+  BoundaryConditions<dim>::node_water(const ConstrainedNode  &node,
+                                      const PoreWaterAtNodes &water)
+  {
+    NodeWater          w;
+    const unsigned int i0 = node.local_dofs[0];
+    w.m_w                 = water.mass.local_element(i0);
+    w.n_i                 = water.porosity.local_element(i0);
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        const unsigned int i = node.local_dofs[c];
+        w.v_w[c]             = water.brought_velocity.local_element(i);
+        w.v_w_new[c]         = water.new_velocity.local_element(i);
+        w.F_w[c]             = water.force.local_element(i);
+      }
+    return w;
+  }
+
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::pore_water_relief(const bool   drains,
+                                             const double own,
+                                             const double after,
+                                             const double drag,
+                                             const double n_i,
+                                             const double m_s)
+  {
+    if (drains)
+      return -drag / m_s;
+    return n_i > 0 ? (std::max(own, 0.) / n_i - std::max(after, 0.)) / m_s : 0.;
+  }
+
+
+  template <int dim>
   bool
-  BoundaryConditions<dim>::water_drains_at(const unsigned int k) const
+  BoundaryConditions<dim>::water_drains_along(const unsigned int    k,
+                                              const Tensor<1, dim> &n) const
   {
     if (!has_drained_walls)
       return false;
@@ -664,7 +666,6 @@ namespace MPM
     if (w == numbers::invalid_unsigned_int)
       return true;
     // The water's constraint leaves the wall's normal free.
-    const Tensor<1, dim> &n = nodes[k].normal;
     return (water_nodes[w].projector * n) * n > 0.5;
   }
 

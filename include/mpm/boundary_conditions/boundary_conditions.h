@@ -410,10 +410,32 @@ namespace MPM
     /// For each node of nodes: its index in water_nodes, or
     /// numbers::invalid_unsigned_int (the water is free there).
     std::vector<unsigned int> water_node_of_node;
-    /// Whether the pore water passes the wall of node @p k (an index of
-    /// nodes): a drained wall, whose water is not held along the normal.
+    /// Whether the pore water passes a wall of normal @p n at node @p k
+    /// (an index of nodes): a drained wall, whose water is not held along
+    /// @p n.
     bool
-    water_drains_at(const unsigned int k) const;
+    water_drains_along(const unsigned int k, const Tensor<1, dim> &n) const;
+    /// The pore water at one constrained node (PoreWaterAtNodes read).
+    struct NodeWater
+    {
+      double         m_w = 0, n_i = 0;
+      Tensor<1, dim> v_w, v_w_new, F_w;
+    };
+    static NodeWater
+    node_water(const ConstrainedNode &node, const PoreWaterAtNodes &water);
+    /**
+     * apply_friction()'s relief (per unit skeleton mass @p m_s and time)
+     * of one wall, from the water's pushes on it: its own @p own (without
+     * the drag), @p after the drag, and the drag's force @p drag on it.
+     * Impermeable: p A - R_w with p A = own / n_i; drained: -drag.
+     */
+    static double
+    pore_water_relief(const bool   drains,
+                      const double own,
+                      const double after,
+                      const double drag,
+                      const double n_i,
+                      const double m_s);
     /// apply_friction()'s pore-water relief at the 3D edge node @p k, for
     /// each of its two walls (per unit skeleton mass and time).
     std::array<double, 2>
