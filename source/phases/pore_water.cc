@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace MPM
 {
@@ -367,10 +366,11 @@ namespace MPM
     const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
       &gradients) const
   {
+    // The point's own rate in place of its cell's mean.
     update_point_with_cell_mean(props,
                                 values,
                                 gradients,
-                                std::numeric_limits<double>::quiet_NaN());
+                                cell_rate(props, values, gradients).first);
   }
 
 
@@ -407,11 +407,8 @@ namespace MPM
           (1 - flip_fraction) * values[0];
     for (unsigned int d = 0; d < dim; ++d)
       props[velocity_slot() + d] = v_w[d];
-    const double div_w = trace(gradients[0]);
     const double div_s = trace(gradients[2]);
-    props[pressure_slot()] -=
-      dt * bulk_modulus / n *
-      (std::isnan(cell_mean) ? (1 - n) * div_s + n * div_w : cell_mean);
+    props[pressure_slot()] -= dt * bulk_modulus / n * cell_mean;
     // The pores change with the skeleton's volume; bounded away from 0
     // and 1, where the formulation has no meaning.
     props[porosity_slot()] =

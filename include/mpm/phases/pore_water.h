@@ -246,8 +246,8 @@ namespace MPM
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
         &gradients) const override;
 
-    /// update_point() with the pressure's rate @p cell_mean (NaN: the
-    /// point's own).
+    /// update_point() with the pressure's volumetric rate @p cell_mean
+    /// (update_point(): the point's own, cell_rate()).
     void
     update_point_with_cell_mean(
       double                                                          *props,
