@@ -8,6 +8,7 @@
 #include <array>
 #include <iomanip>
 #include <limits>
+#include <vector>
 
 namespace MPM
 {
@@ -16,7 +17,8 @@ namespace MPM
     /**
      * The pore pressure and the effective stress of the saturated points
      * at the end of the run: the volume-weighted mean, the least and the
-     * largest pore pressure, and the mean effective vertical stress (the
+     * largest pore pressure, the 1st and 99th percentiles of the points'
+     * pore pressures, and the mean effective vertical stress (the
      * last coordinate's normal stress, tension positive). A load shared
      * between the water and the skeleton (Skempton's B under undrained
      * loading, a drained end state) reads off these.
@@ -43,6 +45,7 @@ namespace MPM
         std::array<double, 3> sums{};
         double least = std::numeric_limits<double>::max();
         double largest = -std::numeric_limits<double>::max();
+        std::vector<double>   pressures;
         if (water.active())
           for (const auto &point : simulator.get_particle_handler())
             {
@@ -58,6 +61,7 @@ namespace MPM
               sums[2] += V * stress[dim - 1][dim - 1];
               least   = std::min(least, p);
               largest = std::max(largest, p);
+              pressures.push_back(p);
             }
         const MPI_Comm comm = simulator.get_mpi_communicator();
         Utilities::MPI::sum(ArrayView<const double>(sums.data(), 3),
@@ -65,6 +69,23 @@ namespace MPM
                             ArrayView<double>(sums.data(), 3));
         least   = Utilities::MPI::min(least, comm);
         largest = Utilities::MPI::max(largest, comm);
+        // The 1st and 99th percentiles (nearest rank) of all ranks' points:
+        // a pressure oscillation shows in them before the extremes.
+        const std::vector<std::vector<double>> all_pressures =
+          Utilities::MPI::gather(comm, pressures, 0);
+        pressures.clear();
+        for (const auto &rank_pressures : all_pressures)
+          pressures.insert(pressures.end(),
+                           rank_pressures.begin(),
+                           rank_pressures.end());
+        std::sort(pressures.begin(), pressures.end());
+        // (Only rank 0 has them; the report is rank 0's.)
+        const auto percentile = [&](const double q) {
+          if (pressures.empty())
+            return std::numeric_limits<double>::quiet_NaN();
+          return pressures[static_cast<std::size_t>(
+            q * static_cast<double>(pressures.size() - 1))];
+        };
         report << "## pore pressure of the saturated points at the end\n";
         if (sums[1] == 0)
           {
@@ -75,8 +96,10 @@ namespace MPM
                << "mean pore pressure (Pa): " << sums[0] / sums[1] << '\n'
                << "least pore pressure (Pa): " << least << '\n'
                << "largest pore pressure (Pa): " << largest << '\n'
-               << "mean effective vertical stress (Pa): "
-               << sums[2] / sums[1] << '\n'
+               << "1st / 99th percentile of the points' pore pressure (Pa): "
+               << percentile(0.01) << " / " << percentile(0.99) << '\n'
+               << "mean effective vertical stress (Pa): " << sums[2] / sums[1]
+               << '\n'
                << std::setprecision(6);
       }
 

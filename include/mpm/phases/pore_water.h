@@ -230,12 +230,17 @@ namespace MPM
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
         &gradients) const override;
 
-    /// With 'Pressure rate averaging = cell'.
+    /// With 'Pressure rate averaging = cell' or 'Pressure projection = cell
+    /// linear'.
     bool
     averages_over_cells() const override
     {
-      return average_pressure_rate;
+      return average_pressure_rate || project_pressure;
     }
+
+    void
+    finish_cell(const ArrayView<double *const>    &props,
+                const ArrayView<const Point<dim>> &positions) const override;
 
     /// The point's volumetric rate (1 - n) div v_s + n div v_w and its
     /// volume (0 for a dry point).
@@ -309,6 +314,8 @@ namespace MPM
     double         flip_fraction = 0;
     /// 'Pressure rate averaging = cell'.
     bool               average_pressure_rate = false;
+    /// 'Pressure projection = cell linear'.
+    bool               project_pressure = false;
     Tensor<1, dim> gravity;
     const NodalVector *skeleton_velocity = nullptr;
 

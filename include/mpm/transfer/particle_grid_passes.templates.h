@@ -804,6 +804,8 @@ namespace MPM
             const unsigned int first,
             const unsigned int last) {
           std::vector<std::pair<Values, Gradients>> cell_points;
+          std::vector<double *>                     cell_props;
+          std::vector<Point<dim>>                   cell_positions;
           for (unsigned int c = first; c < last; ++c)
             {
               const ActiveCell  &cell = this->active_cells[c];
@@ -826,7 +828,10 @@ namespace MPM
                       weight += w;
                     }
                   const double mean = weight > 0 ? sum / weight : 0.;
-                  for (unsigned int k = cell.first_entry; k < end; ++k)
+                  cell_props.clear();
+                  cell_positions.clear();
+                  auto point = cell.first_point;
+                  for (unsigned int k = cell.first_entry; k < end; ++k, ++point)
                     {
                       const auto &[values, gradients] =
                         cell_points[k - cell.first_entry];
@@ -834,7 +839,11 @@ namespace MPM
                                                          values,
                                                          gradients,
                                                          mean);
+                      cell_props.push_back(this->points[k]);
+                      cell_positions.push_back(point->get_location());
                     }
+                  kernel.finish_cell(make_array_view(cell_props),
+                                     make_array_view(cell_positions));
                   continue;
                 }
               for (unsigned int k = cell.first_entry; k < end; ++k)
@@ -881,7 +890,13 @@ namespace MPM
           {
             // The mean of the rates over the points of each point's own
             // cell (point_cell_begin), then each point's update.
-            for_point_cells([&](const unsigned int c, const unsigned int) {
+            std::vector<std::vector<double *>>   chunk_props(chunk_count(
+              point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
+              this->cell_chunk_size));
+            std::vector<std::vector<Point<dim>>> chunk_positions(
+              chunk_props.size());
+            for_point_cells([&](const unsigned int c,
+                                const unsigned int chunk) {
               double sum = 0, weight = 0;
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
@@ -894,16 +909,25 @@ namespace MPM
                   weight += w;
                 }
               const double mean = weight > 0 ? sum / weight : 0.;
+              std::vector<double *>   &cell_props     = chunk_props[chunk];
+              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
+              cell_props.clear();
+              cell_positions.clear();
+              auto point = point_cell_first_point[c];
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
-                   ++p)
+                   ++p, ++point)
                 {
                   const auto [values, gradients] = point_sums(p);
                   kernel.update_point_with_cell_mean(this->points[p],
                                                      values,
                                                      gradients,
                                                      mean);
+                  cell_props.push_back(this->points[p]);
+                  cell_positions.push_back(point->get_location());
                 }
+              kernel.finish_cell(make_array_view(cell_props),
+                                 make_array_view(cell_positions));
             });
             return;
           }

@@ -1,7 +1,9 @@
 #ifndef mpm_transfer_phase_kernel_h
 #define mpm_transfer_phase_kernel_h
 
+#include <deal.II/base/array_view.h>
 #include <deal.II/base/geometry_info.h>
+#include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
 #include <mpm/grid/nodal_vector.h>
@@ -113,6 +115,19 @@ namespace MPM
     {
       (void)cell_mean;
       update_point(props, values, gradients);
+    }
+
+    /**
+     * After update_point_with_cell_mean() for every point of one cell: a
+     * last look at the cell's points together, with their positions
+     * @p positions (e.g. a field fitted over the cell). Nothing by default.
+     */
+    virtual void
+    finish_cell(const ArrayView<double *const>    &props,
+                const ArrayView<const Point<dim>> &positions) const
+    {
+      (void)props;
+      (void)positions;
     }
   };
 } // namespace MPM
