@@ -36,6 +36,17 @@ endif()
 if(NOT DEFINED ENV{OMPI_MCA_sharedfp})
   set(ENV{OMPI_MCA_sharedfp} ^sm)
 endif()
+# The shared session directory itself raced too: one singleton removed
+# /tmp/ompi.HOST.0/jf.0 at its end while another created jf.0/1 in it, and
+# the second stopped in MPI_Init with "A call to mkdir was unable to create
+# the desired directory" (bad_input_mu_i_friction, once; exit code 1
+# instead of 2). Each test's singletons get a session directory base of
+# their own. (Not under mpirun, which makes a directory of its own per job,
+# and whose sockets there must keep to 108 characters of path.)
+if(NOT DEFINED ENV{OMPI_MCA_orte_tmpdir_base} AND NOT RANKS GREATER 1)
+  file(MAKE_DIRECTORY ${WORKDIR}/mpi-session)
+  set(ENV{OMPI_MCA_orte_tmpdir_base} ${WORKDIR}/mpi-session)
+endif()
 
 set(_numdiff_options -a 1e-10 -r 1e-8)
 if(PRM)
