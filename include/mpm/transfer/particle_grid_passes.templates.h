@@ -749,6 +749,7 @@ namespace MPM
   {
     using Kernel                 = PhaseKernel<dim>;
     const typename Kernel::Targets targets = kernel.grid_targets();
+    const bool                     with_offsets = kernel.needs_node_offsets();
     this->template for_active_cells<Kernel::max_targets>(
       targets,
       [&](const unsigned int c,
@@ -757,9 +758,19 @@ namespace MPM
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
         for (unsigned int k = cell.first_entry; k < end; ++k)
-          kernel.add_to_grid(this->points[weights().point_of_entry(k)],
-                             this->shape_functions[k],
-                             sums);
+          if (with_offsets)
+            {
+              const VertexValues dx = weights().node_offsets(cell, k);
+              kernel.add_to_grid(this->points[weights().point_of_entry(k)],
+                                 this->shape_functions[k],
+                                 &dx,
+                                 sums);
+            }
+          else
+            kernel.add_to_grid(this->points[weights().point_of_entry(k)],
+                               this->shape_functions[k],
+                               nullptr,
+                               sums);
       });
     for (NodalVector *target : targets)
       if (target != nullptr)
@@ -843,7 +854,8 @@ namespace MPM
                       cell_positions.push_back(point->get_location());
                     }
                   kernel.finish_cell(make_array_view(cell_props),
-                                     make_array_view(cell_positions));
+                                     make_array_view(cell_positions),
+                                     make_array_view(cell_points));
                   continue;
                 }
               for (unsigned int k = cell.first_entry; k < end; ++k)
@@ -895,30 +907,37 @@ namespace MPM
               this->cell_chunk_size));
             std::vector<std::vector<Point<dim>>> chunk_positions(
               chunk_props.size());
+            std::vector<std::vector<std::pair<Values, Gradients>>>
+              chunk_point_sums(chunk_props.size());
             for_point_cells([&](const unsigned int c,
                                 const unsigned int chunk) {
+              std::vector<double *>   &cell_props     = chunk_props[chunk];
+              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
+              std::vector<std::pair<Values, Gradients>> &cell_point_sums =
+                chunk_point_sums[chunk];
+              cell_props.clear();
+              cell_positions.clear();
+              cell_point_sums.clear();
               double sum = 0, weight = 0;
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
                    ++p)
                 {
-                  const auto [values, gradients] = point_sums(p);
+                  cell_point_sums.push_back(point_sums(p));
+                  const auto &[values, gradients] = cell_point_sums.back();
                   const auto [rate, w] =
                     kernel.cell_rate(this->points[p], values, gradients);
                   sum += w * rate;
                   weight += w;
                 }
-              const double mean = weight > 0 ? sum / weight : 0.;
-              std::vector<double *>   &cell_props     = chunk_props[chunk];
-              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
-              cell_props.clear();
-              cell_positions.clear();
+              const double mean  = weight > 0 ? sum / weight : 0.;
               auto point = point_cell_first_point[c];
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
                    ++p, ++point)
                 {
-                  const auto [values, gradients] = point_sums(p);
+                  const auto &[values, gradients] =
+                    cell_point_sums[p - point_cell_begin[c]];
                   kernel.update_point_with_cell_mean(this->points[p],
                                                      values,
                                                      gradients,
@@ -927,7 +946,8 @@ namespace MPM
                   cell_positions.push_back(point->get_location());
                 }
               kernel.finish_cell(make_array_view(cell_props),
-                                 make_array_view(cell_positions));
+                                 make_array_view(cell_positions),
+                                 make_array_view(cell_point_sums));
             });
             return;
           }
