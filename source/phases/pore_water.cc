@@ -67,22 +67,21 @@ namespace MPM
     prm.declare_entry(
       "Pressure projection",
       "cell linear",
-      Patterns::Selection("none|cell linear|nodal slope"),
-      "After each step, the pore pressures of the saturated points of each "
-      "cell are replaced by a linear field over the cell: 'cell linear', "
-      "their volume-weighted least-squares fit (a field linear over each "
+      Patterns::Selection("none|cell linear"),
+      "'cell linear': after each step the pore pressures of the saturated "
+      "points of each cell are replaced by their volume-weighted "
+      "least-squares linear fit over the cell. A field linear over each "
       "cell is kept to round-off; what it removes is the point-to-point "
-      "scatter that points sheared across cells carry in: in the "
-      "saturated USGS flume the 1st-99th percentiles at 0.4 s shrink from "
-      "-3.4 ... +3.2 kPa to -0.6 ... +0.3 kPa, and the run reaches rest "
-      "instead of inverting a CPDI domain at 0.665 s; with 2 points per "
-      "cell direction it removes little: run saturated flows with 3); "
-      "'nodal slope', the cell's mean with the slope of the nodal pressure "
-      "field (sum N V p / sum N V at the points' weighted centre of each "
-      "node, exact for a linear field), so that a cell's slope follows the "
-      "pressure around it. doc/pore_water.md, 'Pressure stabilisation'. "
-      "Meant with 'Pressure rate averaging = cell'. 'none': each point "
-      "keeps its own.");
+      "scatter that points sheared across cells carry in (in the saturated "
+      "USGS flume with 'cell' averaging the 1st-99th percentiles at 0.4 s "
+      "shrink from -3.4 ... +3.2 kPa to -0.6 ... +0.3 kPa and the run "
+      "reaches rest instead of inverting a CPDI domain at 0.665 s; "
+      "doc/pore_water.md, 'Pressure stabilisation'). Meant with "
+      "'Pressure rate averaging = cell': with each point's own rate the "
+      "cells' fits scatter instead. With 2 points per cell direction it "
+      "removes little (a saturated collapse: -2.8 ... +2.6 kPa at rest "
+      "against -0.7 ... +1.0 kPa with 3): run saturated flows with 3. "
+      "'none': each point keeps its own.");
     prm.leave_subsection();
   }
 
@@ -97,10 +96,7 @@ namespace MPM
     viscosity     = prm.get_double("Viscosity");
     kozeny_carman = prm.get("Permeability law") == "kozeny-carman";
     average_pressure_rate = prm.get("Pressure rate averaging") == "cell";
-    const std::string projection_name = prm.get("Pressure projection");
-    projection = projection_name == "cell linear" ? Projection::cell_linear :
-                 projection_name == "nodal slope" ? Projection::nodal_slope :
-                                                    Projection::none;
+    project_pressure      = prm.get("Pressure projection") == "cell linear";
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -142,13 +138,9 @@ namespace MPM
                                &force,
                                &skeleton_pressure_force,
                                &drag,
-                               &volume_sums,
-                               &pressure_sums,
-                               &centre_sums})
+                               &volume_sums})
       nodal.add(*field, NodalFields::Ghosts::summed);
     nodal.add(nodal_porosity, NodalFields::Ghosts::computed);
-    nodal.add(nodal_pressure, NodalFields::Ghosts::computed);
-    nodal.add(nodal_centre_offset, NodalFields::Ghosts::computed);
     nodal.add(velocity, NodalFields::Ghosts::computed);
     nodal.add(velocity_new, NodalFields::Ghosts::computed);
     nodal.add(velocity_against_held_skeleton, NodalFields::Ghosts::computed);
@@ -220,19 +212,15 @@ namespace MPM
              &force,
              &skeleton_pressure_force,
              &drag,
-             &volume_sums,
-             projection == Projection::nodal_slope ? &pressure_sums : nullptr,
-             projection == Projection::nodal_slope ? &centre_sums : nullptr}};
+             &volume_sums}};
   }
 
 
   template <int dim>
   void
-  PoreWater<dim>::add_to_grid(
-    const double                                  *props,
-    const Q1ShapeFunctions<dim>                   &sf,
-    const typename PhaseKernel<dim>::VertexValues *node_offsets,
-    typename PhaseKernel<dim>::Sums               &sums) const
+  PoreWater<dim>::add_to_grid(const double                    *props,
+                              const Q1ShapeFunctions<dim>     &sf,
+                              typename PhaseKernel<dim>::Sums &sums) const
   {
     using Layout   = PropertyLayout<dim>;
     const double n = props[porosity_slot()];
@@ -267,13 +255,6 @@ namespace MPM
         // The saturated volume at the nodes, in every component.
         for (unsigned int c = 0; c < dim; ++c)
           sums[5][i][c] += N * V;
-        if (node_offsets != nullptr)
-          {
-            // Its pressure (in every component) and its centre.
-            for (unsigned int c = 0; c < dim; ++c)
-              sums[6][i][c] += N * V * p;
-            sums[7][i] -= (N * V) * (*node_offsets)[i];
-          }
       }
   }
 
@@ -299,13 +280,6 @@ namespace MPM
         const double V_i = volume_sums.local_element(i);
         nodal_porosity.local_element(i) =
           V_i > 0 ? m_w / (water_density * V_i) : 0.;
-        if (projection == Projection::nodal_slope)
-          {
-            nodal_pressure.local_element(i) =
-              V_i > 0 ? pressure_sums.local_element(i) / V_i : 0.;
-            nodal_centre_offset.local_element(i) =
-              V_i > 0 ? centre_sums.local_element(i) / V_i : 0.;
-          }
         if (m_w <= 0 || m_s <= 0)
           {
             velocity.local_element(i)     = 0;
@@ -400,12 +374,6 @@ namespace MPM
   PoreWater<dim>::grid_sources()
   {
     Assert(skeleton_velocity != nullptr, ExcInternalError());
-    if (projection == Projection::nodal_slope)
-      return {{&velocity_new,
-               &velocity,
-               skeleton_velocity,
-               &nodal_pressure,
-               &nodal_centre_offset}};
     return {{&velocity_new, &velocity, skeleton_velocity}};
   }
 
@@ -474,15 +442,13 @@ namespace MPM
   template <int dim>
   void
   PoreWater<dim>::finish_cell(
-    const ArrayView<double *const>                                 &props,
-    const ArrayView<const Point<dim>>                              &positions,
-    const ArrayView<const typename PhaseKernel<dim>::PointSources> &sources)
-    const
+    const ArrayView<double *const>    &props,
+    const ArrayView<const Point<dim>> &positions) const
   {
-    if (projection == Projection::none)
+    if (!project_pressure)
       return;
-    // The volume-weighted mean a and centre xbar of the cell's saturated
-    // points.
+    // The volume-weighted least-squares fit p = a + b . (x - xbar) over
+    // the cell's saturated points.
     double     W = 0, a = 0;
     Point<dim> xbar;
     for (unsigned int q = 0; q < props.size(); ++q)
@@ -497,45 +463,15 @@ namespace MPM
       return;
     a /= W;
     xbar /= W;
-    // The slope b: the least-squares fit p = a + b . (x - xbar) to the
-    // points' own pressures ('cell linear'), or to the nodal pressure
-    // field interpolated at them, against where that field is exact for
-    // a linear field, x_p + sum_i N_i (xbar_i - x_i) ('nodal slope').
-    const bool nodal = projection == Projection::nodal_slope;
-    const auto sample =
-      [&](const unsigned int q) -> std::pair<Tensor<1, dim>, double> {
-      if (nodal)
-        return {positions[q] + sources[q].first[4] - xbar,
-                sources[q].first[3][0]};
-      return {positions[q] - xbar, props[q][pressure_slot()]};
-    };
-    // The samples' own mean and centre (the points' a and 0 for 'cell
-    // linear').
-    double         a_s = a;
-    Tensor<1, dim> x_s;
-    if (nodal)
-      {
-        a_s = 0;
-        for (unsigned int q = 0; q < props.size(); ++q)
-          if (props[q][porosity_slot()] > 0)
-            {
-              const double w         = props[q][PropertyLayout<dim>::volume];
-              const auto [dx, value] = sample(q);
-              a_s += w * value;
-              x_s += w * dx;
-            }
-        a_s /= W;
-        x_s /= W;
-      }
     SymmetricTensor<2, dim> S;
     Tensor<1, dim>          r;
     for (unsigned int q = 0; q < props.size(); ++q)
       if (props[q][porosity_slot()] > 0)
         {
-          const double w         = props[q][PropertyLayout<dim>::volume];
-          const auto [dx, value] = sample(q);
-          S += w * symmetrize(outer_product(dx - x_s, dx - x_s));
-          r += w * (value - a_s) * (dx - x_s);
+          const double         w  = props[q][PropertyLayout<dim>::volume];
+          const Tensor<1, dim> dx = positions[q] - xbar;
+          S += w * symmetrize(outer_product(dx, dx));
+          r += w * (props[q][pressure_slot()] - a) * dx;
         }
     // b = S^+ r, the pseudo-inverse: a cell whose points lie on a line
     // (or are one point) gets the slope along that line and none across

@@ -49,7 +49,6 @@ namespace MPM
   public:
     using typename PhaseKernel<dim>::Targets;
     using typename PhaseKernel<dim>::Sums;
-    using typename PhaseKernel<dim>::VertexValues;
     using typename PhaseKernel<dim>::Sources;
 
     /// The subsection 'Boundary conditions/Side walls'.
@@ -79,7 +78,6 @@ namespace MPM
     void
     add_to_grid(const double                *props,
                 const Q1ShapeFunctions<dim> &sf,
-                const VertexValues          *node_offsets,
                 Sums                        &sums) const override;
 
     /// None: the walls update no point.

@@ -216,16 +216,9 @@ namespace MPM
     grid_targets() override;
 
     void
-    add_to_grid(const double                                  *props,
-                const Q1ShapeFunctions<dim>                   &sf,
-                const typename PhaseKernel<dim>::VertexValues *node_offsets,
-                typename PhaseKernel<dim>::Sums &sums) const override;
-
-    bool
-    needs_node_offsets() const override
-    {
-      return projection == Projection::nodal_slope;
-    }
+    add_to_grid(const double                        *props,
+                const Q1ShapeFunctions<dim>         &sf,
+                typename PhaseKernel<dim>::Sums     &sums) const override;
 
     typename PhaseKernel<dim>::Sources
     grid_sources() override;
@@ -242,14 +235,12 @@ namespace MPM
     bool
     averages_over_cells() const override
     {
-      return average_pressure_rate || projection != Projection::none;
+      return average_pressure_rate || project_pressure;
     }
 
     void
     finish_cell(const ArrayView<double *const>    &props,
-                const ArrayView<const Point<dim>> &positions,
-                const ArrayView<const typename PhaseKernel<dim>::PointSources>
-                  &sources) const override;
+                const ArrayView<const Point<dim>> &positions) const override;
 
     /// The point's volumetric rate (1 - n) div v_s + n div v_w and its
     /// volume (0 for a dry point).
@@ -324,13 +315,7 @@ namespace MPM
     /// 'Pressure rate averaging = cell'.
     bool               average_pressure_rate = false;
     /// 'Pressure projection = cell linear'.
-    enum class Projection
-    {
-      none,
-      cell_linear,
-      nodal_slope
-    };
-    Projection         projection = Projection::none;
+    bool               project_pressure = false;
     Tensor<1, dim> gravity;
     const NodalVector *skeleton_velocity = nullptr;
 
@@ -339,12 +324,6 @@ namespace MPM
     /// sum N V over the saturated points, and the nodal porosity
     /// m_w / (rho_w sum N V) (at_nodes()), in every component.
     NodalVector volume_sums, nodal_porosity;
-    /// 'Pressure projection = nodal slope': sum N V p and sum N V (x_p -
-    /// x_i) over the saturated points, and their ratios to sum N V: the
-    /// nodal pressure (in every component) and the offset of the points'
-    /// weighted centre from the node, where that pressure is exact for a
-    /// linear field.
-    NodalVector pressure_sums, centre_sums, nodal_pressure, nodal_centre_offset;
     /// Brought (p / m) and end-of-step velocity.
     NodalVector velocity, velocity_new;
     /// The water's new velocity by its balance against the skeleton's

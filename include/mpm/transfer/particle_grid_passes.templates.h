@@ -749,7 +749,6 @@ namespace MPM
   {
     using Kernel                 = PhaseKernel<dim>;
     const typename Kernel::Targets targets = kernel.grid_targets();
-    const bool                     with_offsets = kernel.needs_node_offsets();
     this->template for_active_cells<Kernel::max_targets>(
       targets,
       [&](const unsigned int c,
@@ -758,19 +757,9 @@ namespace MPM
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
         for (unsigned int k = cell.first_entry; k < end; ++k)
-          if (with_offsets)
-            {
-              const VertexValues dx = weights().node_offsets(cell, k);
-              kernel.add_to_grid(this->points[weights().point_of_entry(k)],
-                                 this->shape_functions[k],
-                                 &dx,
-                                 sums);
-            }
-          else
-            kernel.add_to_grid(this->points[weights().point_of_entry(k)],
-                               this->shape_functions[k],
-                               nullptr,
-                               sums);
+          kernel.add_to_grid(this->points[weights().point_of_entry(k)],
+                             this->shape_functions[k],
+                             sums);
       });
     for (NodalVector *target : targets)
       if (target != nullptr)
@@ -854,8 +843,7 @@ namespace MPM
                       cell_positions.push_back(point->get_location());
                     }
                   kernel.finish_cell(make_array_view(cell_props),
-                                     make_array_view(cell_positions),
-                                     make_array_view(cell_points));
+                                     make_array_view(cell_positions));
                   continue;
                 }
               for (unsigned int k = cell.first_entry; k < end; ++k)
@@ -907,37 +895,30 @@ namespace MPM
               this->cell_chunk_size));
             std::vector<std::vector<Point<dim>>> chunk_positions(
               chunk_props.size());
-            std::vector<std::vector<std::pair<Values, Gradients>>>
-              chunk_point_sums(chunk_props.size());
             for_point_cells([&](const unsigned int c,
                                 const unsigned int chunk) {
-              std::vector<double *>   &cell_props     = chunk_props[chunk];
-              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
-              std::vector<std::pair<Values, Gradients>> &cell_point_sums =
-                chunk_point_sums[chunk];
-              cell_props.clear();
-              cell_positions.clear();
-              cell_point_sums.clear();
               double sum = 0, weight = 0;
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
                    ++p)
                 {
-                  cell_point_sums.push_back(point_sums(p));
-                  const auto &[values, gradients] = cell_point_sums.back();
+                  const auto [values, gradients] = point_sums(p);
                   const auto [rate, w] =
                     kernel.cell_rate(this->points[p], values, gradients);
                   sum += w * rate;
                   weight += w;
                 }
-              const double mean  = weight > 0 ? sum / weight : 0.;
+              const double mean = weight > 0 ? sum / weight : 0.;
+              std::vector<double *>   &cell_props     = chunk_props[chunk];
+              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
+              cell_props.clear();
+              cell_positions.clear();
               auto point = point_cell_first_point[c];
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
                    ++p, ++point)
                 {
-                  const auto &[values, gradients] =
-                    cell_point_sums[p - point_cell_begin[c]];
+                  const auto [values, gradients] = point_sums(p);
                   kernel.update_point_with_cell_mean(this->points[p],
                                                      values,
                                                      gradients,
@@ -946,8 +927,7 @@ namespace MPM
                   cell_positions.push_back(point->get_location());
                 }
               kernel.finish_cell(make_array_view(cell_props),
-                                 make_array_view(cell_positions),
-                                 make_array_view(cell_point_sums));
+                                 make_array_view(cell_positions));
             });
             return;
           }

@@ -39,9 +39,9 @@ namespace MPM
     using VertexValues = std::array<Tensor<1, dim>, n_vertices>;
 
     /// Nodal fields a particle-to-grid pass of a phase may add to.
-    static constexpr unsigned int max_targets = 8;
+    static constexpr unsigned int max_targets = 6;
     /// Nodal fields a grid-to-particle pass of a phase may read.
-    static constexpr unsigned int max_sources = 5;
+    static constexpr unsigned int max_sources = 3;
 
     using Targets = std::array<NodalVector *, max_targets>;
     using Sums    = std::array<VertexValues, max_targets>;
@@ -62,18 +62,7 @@ namespace MPM
     virtual void
     add_to_grid(const double                *props,
                 const Q1ShapeFunctions<dim> &sf,
-                const VertexValues          *node_offsets,
                 Sums                        &sums) const = 0;
-
-    /**
-     * Whether add_to_grid() takes the offsets x_i - x_p of the weight
-     * set's nodes from the point (otherwise it gets nullptr).
-     */
-    virtual bool
-    needs_node_offsets() const
-    {
-      return false;
-    }
 
     /// The nodal fields whose values and gradients update_point() reads.
     virtual Sources
@@ -128,24 +117,17 @@ namespace MPM
       update_point(props, values, gradients);
     }
 
-    /// The values and gradients at one point of every grid_sources().
-    using PointSources = std::pair<std::array<Tensor<1, dim>, max_sources>,
-                                   std::array<Tensor<2, dim>, max_sources>>;
-
     /**
      * After update_point_with_cell_mean() for every point of one cell: a
      * last look at the cell's points together, with their positions
-     * @p positions and the values and gradients of the sources at them
-     * @p sources (e.g. a field fitted over the cell). Nothing by default.
+     * @p positions (e.g. a field fitted over the cell). Nothing by default.
      */
     virtual void
-    finish_cell(const ArrayView<double *const>      &props,
-                const ArrayView<const Point<dim>>   &positions,
-                const ArrayView<const PointSources> &sources) const
+    finish_cell(const ArrayView<double *const>    &props,
+                const ArrayView<const Point<dim>> &positions) const
     {
       (void)props;
       (void)positions;
-      (void)sources;
     }
   };
 } // namespace MPM
