@@ -274,6 +274,33 @@ namespace MPM
     /// are not the points).
     std::vector<Tensor<1, dim>> phase_values;
     std::vector<Tensor<2, dim>> phase_gradients;
+
+    /// One point's values and gradients of a phase kernel's sources.
+    using PhasePointSums =
+      std::pair<std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources>,
+                std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>>;
+    /// Per chunk: one cell's points' sums and positions
+    /// (update_phase_points_of_cell()).
+    struct PhaseCellScratch
+    {
+      std::vector<PhasePointSums> sums;
+      std::vector<Point<dim>>     positions;
+    };
+    std::vector<PhaseCellScratch> chunk_phase_scratch;
+
+    /**
+     * The points this->points[first, first + scratch.sums.size()) of one
+     * cell, whose sums are in @p scratch and the first of which is
+     * @p first_point in the ParticleHandler, updated by @p kernel with the
+     * mean of their rates (PhaseKernel::averages_over_cells()), then shown
+     * to it together with their positions (PhaseKernel::finish_cell()).
+     */
+    void
+    update_phase_points_of_cell(
+      const PhaseKernel<dim>                                     &kernel,
+      const unsigned int                                          first,
+      typename Particles::ParticleHandler<dim>::particle_iterator first_point,
+      PhaseCellScratch &scratch) const;
   };
 } // namespace MPM
 

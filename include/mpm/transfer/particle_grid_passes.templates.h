@@ -777,10 +777,10 @@ namespace MPM
     const typename Kernel::Sources sources = kernel.grid_sources();
     // One entry's values and gradients of every source, added to @p value
     // and @p gradient.
-    const auto add_entry = [&](const ActiveCell                    &cell,
-                               const unsigned int                   k,
-                               Tensor<1, dim>                      *value,
-                               Tensor<2, dim>                      *gradient) {
+    const auto add_entry = [&](const ActiveCell  &cell,
+                               const unsigned int k,
+                               Tensor<1, dim>    *value,
+                               Tensor<2, dim>    *gradient) {
       const auto &sf = this->shape_functions[k];
       for (unsigned int s = 0; s < n_sources; ++s)
         if (sources[s] != nullptr)
@@ -793,68 +793,48 @@ namespace MPM
               }
           }
     };
-    using Values          = std::array<Tensor<1, dim>, n_sources>;
-    using Gradients       = std::array<Tensor<2, dim>, n_sources>;
     const bool cell_means = kernel.averages_over_cells();
     if constexpr (Weights::entries_are_points)
-      for_each_chunk(
-        this->active_cells.size(),
-        this->cell_chunk_size,
-        [&](const unsigned int,
-            const unsigned int first,
-            const unsigned int last) {
-          std::vector<std::pair<Values, Gradients>> cell_points;
-          std::vector<double *>                     cell_props;
-          std::vector<Point<dim>>                   cell_positions;
-          for (unsigned int c = first; c < last; ++c)
-            {
-              const ActiveCell  &cell = this->active_cells[c];
-              const unsigned int end  = cell.first_entry + cell.n_points;
-              if (cell_means)
-                {
-                  // The cell's points' values first, then
-                  // the mean of their rates, then each
-                  // point's update.
-                  cell_points.assign(cell.n_points, {});
-                  double sum = 0, weight = 0;
-                  for (unsigned int k = cell.first_entry; k < end; ++k)
-                    {
-                      auto &[values, gradients] =
-                        cell_points[k - cell.first_entry];
-                      add_entry(cell, k, values.data(), gradients.data());
-                      const auto [rate, w] =
-                        kernel.cell_rate(this->points[k], values, gradients);
-                      sum += w * rate;
-                      weight += w;
-                    }
-                  const double mean = weight > 0 ? sum / weight : 0.;
-                  cell_props.clear();
-                  cell_positions.clear();
-                  auto point = cell.first_point;
-                  for (unsigned int k = cell.first_entry; k < end; ++k, ++point)
-                    {
-                      const auto &[values, gradients] =
-                        cell_points[k - cell.first_entry];
-                      kernel.update_point_with_cell_mean(this->points[k],
-                                                         values,
-                                                         gradients,
-                                                         mean);
-                      cell_props.push_back(this->points[k]);
-                      cell_positions.push_back(point->get_location());
-                    }
-                  kernel.finish_cell(make_array_view(cell_props),
-                                     make_array_view(cell_positions));
-                  continue;
-                }
-              for (unsigned int k = cell.first_entry; k < end; ++k)
-                {
-                  std::array<Tensor<1, dim>, n_sources> values;
-                  std::array<Tensor<2, dim>, n_sources> gradients;
-                  add_entry(cell, k, values.data(), gradients.data());
-                  kernel.update_point(this->points[k], values, gradients);
-                }
-            }
-        });
+      {
+        if (cell_means)
+          chunk_phase_scratch.resize(
+            chunk_count(this->active_cells.size(), this->cell_chunk_size));
+        for_each_chunk(
+          this->active_cells.size(),
+          this->cell_chunk_size,
+          [&](const unsigned int chunk,
+              const unsigned int first,
+              const unsigned int last) {
+            for (unsigned int c = first; c < last; ++c)
+              {
+                const ActiveCell  &cell = this->active_cells[c];
+                const unsigned int end  = cell.first_entry + cell.n_points;
+                if (cell_means)
+                  {
+                    PhaseCellScratch &scratch = chunk_phase_scratch[chunk];
+                    scratch.sums.assign(cell.n_points, {});
+                    for (unsigned int k = cell.first_entry; k < end; ++k)
+                      {
+                        auto &[values, gradients] =
+                          scratch.sums[k - cell.first_entry];
+                        add_entry(cell, k, values.data(), gradients.data());
+                      }
+                    update_phase_points_of_cell(kernel,
+                                                cell.first_entry,
+                                                cell.first_point,
+                                                scratch);
+                    continue;
+                  }
+                for (unsigned int k = cell.first_entry; k < end; ++k)
+                  {
+                    std::array<Tensor<1, dim>, n_sources> values;
+                    std::array<Tensor<2, dim>, n_sources> gradients;
+                    add_entry(cell, k, values.data(), gradients.data());
+                    kernel.update_point(this->points[k], values, gradients);
+                  }
+              }
+          });
+      }
     else
       {
         // A point's entries lie in several cells: summed per point first
@@ -877,57 +857,34 @@ namespace MPM
                           &phase_gradients[p * n_sources]);
               }
           }
-        const auto point_sums = [&](const unsigned int p) {
-          std::pair<Values, Gradients> sums;
-          for (unsigned int s = 0; s < n_sources; ++s)
-            {
-              sums.first[s]  = phase_values[std::size_t(p) * n_sources + s];
-              sums.second[s] = phase_gradients[std::size_t(p) * n_sources + s];
-            }
-          return sums;
-        };
         if (cell_means)
           {
-            // The mean of the rates over the points of each point's own
-            // cell (point_cell_begin), then each point's update.
-            std::vector<std::vector<double *>>   chunk_props(chunk_count(
+            // The points in chunks of their own cells (point_cell_begin).
+            chunk_phase_scratch.resize(chunk_count(
               point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
               this->cell_chunk_size));
-            std::vector<std::vector<Point<dim>>> chunk_positions(
-              chunk_props.size());
             for_point_cells([&](const unsigned int c,
                                 const unsigned int chunk) {
-              double sum = 0, weight = 0;
+              PhaseCellScratch &scratch = chunk_phase_scratch[chunk];
+              scratch.sums.resize(point_cell_begin[c + 1] -
+                                  point_cell_begin[c]);
               for (unsigned int p = point_cell_begin[c];
                    p < point_cell_begin[c + 1];
                    ++p)
                 {
-                  const auto [values, gradients] = point_sums(p);
-                  const auto [rate, w] =
-                    kernel.cell_rate(this->points[p], values, gradients);
-                  sum += w * rate;
-                  weight += w;
+                  auto &[values, gradients] =
+                    scratch.sums[p - point_cell_begin[c]];
+                  for (unsigned int s = 0; s < n_sources; ++s)
+                    {
+                      values[s] = phase_values[std::size_t(p) * n_sources + s];
+                      gradients[s] =
+                        phase_gradients[std::size_t(p) * n_sources + s];
+                    }
                 }
-              const double mean = weight > 0 ? sum / weight : 0.;
-              std::vector<double *>   &cell_props     = chunk_props[chunk];
-              std::vector<Point<dim>> &cell_positions = chunk_positions[chunk];
-              cell_props.clear();
-              cell_positions.clear();
-              auto point = point_cell_first_point[c];
-              for (unsigned int p = point_cell_begin[c];
-                   p < point_cell_begin[c + 1];
-                   ++p, ++point)
-                {
-                  const auto [values, gradients] = point_sums(p);
-                  kernel.update_point_with_cell_mean(this->points[p],
-                                                     values,
-                                                     gradients,
-                                                     mean);
-                  cell_props.push_back(this->points[p]);
-                  cell_positions.push_back(point->get_location());
-                }
-              kernel.finish_cell(make_array_view(cell_props),
-                                 make_array_view(cell_positions));
+              update_phase_points_of_cell(kernel,
+                                          point_cell_begin[c],
+                                          point_cell_first_point[c],
+                                          scratch);
             });
             return;
           }
@@ -954,6 +911,43 @@ namespace MPM
                            }
                        });
       }
+  }
+
+
+  template <int dim, class Weights>
+  void
+  ParticleGridPasses<dim, Weights>::update_phase_points_of_cell(
+    const PhaseKernel<dim>                                     &kernel,
+    const unsigned int                                          first,
+    typename Particles::ParticleHandler<dim>::particle_iterator first_point,
+    PhaseCellScratch                                           &scratch) const
+  {
+    const unsigned int n = scratch.sums.size();
+    if (n == 0)
+      return;
+    double sum = 0, weight = 0;
+    for (unsigned int q = 0; q < n; ++q)
+      {
+        const auto &[values, gradients] = scratch.sums[q];
+        const auto [rate, w] =
+          kernel.cell_rate(this->points[first + q], values, gradients);
+        sum += w * rate;
+        weight += w;
+      }
+    const double mean = weight > 0 ? sum / weight : 0.;
+    scratch.positions.clear();
+    auto point = first_point;
+    for (unsigned int q = 0; q < n; ++q, ++point)
+      {
+        const auto &[values, gradients] = scratch.sums[q];
+        kernel.update_point_with_cell_mean(this->points[first + q],
+                                           values,
+                                           gradients,
+                                           mean);
+        scratch.positions.push_back(point->get_location());
+      }
+    kernel.finish_cell(ArrayView<double *const>(&this->points[first], n),
+                       make_array_view(scratch.positions));
   }
 } // namespace MPM
 
