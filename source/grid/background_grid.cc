@@ -491,7 +491,7 @@ namespace MPM
                     std::to_string(dim) + " entries.");
       std::vector<double> values;
       for (const auto &e : entries)
-        values.push_back(Utilities::string_to_double(e));
+        values.push_back(parse_number(e, parameter + ": "));
       return values;
     };
     const auto         n  = numbers(parts[0]);
@@ -501,9 +501,9 @@ namespace MPM
     Point<dim>         p0, p1;
     for (unsigned int d = 0; d < dim; ++d)
       {
-        check_input(n[d] >= 1 && lo[d] < hi[d],
-                    parameter + ": repetitions must be >= 1 and the lower "
-                                "corner below the upper one.");
+        check_input(n[d] >= 1 && n[d] == std::floor(n[d]) && lo[d] < hi[d],
+                    parameter + ": repetitions must be whole numbers >= 1 "
+                                "and the lower corner below the upper one.");
         repetitions.push_back(static_cast<unsigned int>(n[d]));
         p0[d] = lo[d];
         p1[d] = hi[d];

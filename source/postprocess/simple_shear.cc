@@ -111,8 +111,11 @@ namespace MPM
                         "Postprocess/simple shear/Averaging window = '" +
                           window_text + "': give 'x_min, x_max' or leave it "
                           "empty.");
-            window = {{Utilities::string_to_double(bounds[0]),
-                       Utilities::string_to_double(bounds[1])}};
+            const std::string where =
+              "Postprocess/simple shear/Averaging window = '" + window_text +
+              "': ";
+            window = {
+              {parse_number(bounds[0], where), parse_number(bounds[1], where)}};
             check_input(window[0] < window[1],
                         "Postprocess/simple shear/Averaging window = '" +
                           window_text + "': x_min must be below x_max.");

@@ -1,6 +1,8 @@
 #ifndef mpm_base_input_error_h
 #define mpm_base_input_error_h
 
+#include <cerrno>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -28,6 +30,30 @@ namespace MPM
   {
     if (!condition)
       throw InputError(message);
+  }
+
+  /**
+   * The number written in @p text (surrounding blanks allowed), or an
+   * InputError that quotes it after @p where (e.g. "Mesh/Generator
+   * arguments = '...': "). For entries whose pattern is Anything and that
+   * the code splits itself: deal.II's Utilities::string_to_double() aborts
+   * there with a stack trace that names no parameter.
+   */
+  inline double
+  parse_number(const std::string &text, const std::string &where)
+  {
+    const std::size_t first = text.find_first_not_of(" \t");
+    const std::size_t last  = text.find_last_not_of(" \t");
+    const std::string trimmed =
+      first == std::string::npos ? "" : text.substr(first, last - first + 1);
+    char *end = nullptr;
+    errno     = 0;
+    const double value =
+      trimmed.empty() ? 0. : std::strtod(trimmed.c_str(), &end);
+    check_input(!trimmed.empty() && errno == 0 &&
+                  end == trimmed.c_str() + trimmed.size(),
+                where + "'" + trimmed + "' is not a number.");
+    return value;
   }
 } // namespace MPM
 
