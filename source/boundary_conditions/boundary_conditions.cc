@@ -683,6 +683,16 @@ namespace MPM
   }
 
 
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::has_frictional_wall() const
+  {
+    return std::any_of(specs.begin(), specs.end(), [](const auto &spec) {
+      return spec.type == BoundaryType::friction;
+    });
+  }
+
+
   template class BoundaryConditions<2>;
   template class BoundaryConditions<3>;
 } // namespace MPM

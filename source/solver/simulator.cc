@@ -52,6 +52,17 @@ namespace MPM
     boundary_conditions.set_gravity(time_stepping.gravity);
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
+    if (pore_water.active() && boundary_conditions.has_frictional_wall() &&
+        transfer.scheme().flip_fraction(1e-6) > 0)
+      pcout << "Warning: saturated materials on a frictional wall with a "
+               "FLIP share ('Transfer/Scheme = flip/pic blend', 'FLIP "
+               "fraction' > 0): the water's FLIP share was measured to "
+               "break the effective stress on the wall (a saturated layer "
+               "sliding on a Coulomb bed: its pore pressure 66 % too high "
+               "and its acceleration 31 % low; doc/pore_water.md, 'A "
+               "saturated flume: the time step'). 'Transfer/Scheme = apic' "
+               "(the default) or 'FLIP fraction = 0' transfer the water by "
+               "PIC, which is exact there.\n";
     side_walls.initialize(nodal);
     if (!pore_water.active())
       for (const std::string &name : boundary_conditions.pore_pressure_boundaries())

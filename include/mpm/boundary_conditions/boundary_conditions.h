@@ -379,6 +379,10 @@ namespace MPM
     bool
     does_work() const;
 
+    /// Whether a wall has 'Type = friction' (a basal law).
+    bool
+    has_frictional_wall() const;
+
   private:
     /// wall_area on the mesh of @p grid.
     void
