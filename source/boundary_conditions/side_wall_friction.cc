@@ -81,7 +81,8 @@ namespace MPM
   void
   SideWallFriction<dim>::add_to_grid(const double                *props,
                                      const Q1ShapeFunctions<dim> &sf,
-                                     Sums                        &sums) const
+                                     const VertexValues &,
+                                     Sums &sums) const
   {
     using Layout = PropertyLayout<dim>;
     // sigma_zz: the third of the stored components (xx, yy, zz, ...).

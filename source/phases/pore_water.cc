@@ -54,6 +54,25 @@ namespace MPM
                       "y = 2 m. The materials' 'Initial stress' is their "
                       "effective stress.");
     prm.declare_entry(
+      "Water velocity transfer",
+      "transfer scheme",
+      Patterns::Selection("affine|transfer scheme"),
+      "How the water's velocity goes between the points and the nodes. "
+      "'transfer scheme': the skeleton's FLIP share (the blend's 'FLIP "
+      "fraction'; PIC under APIC and XPIC). PIC loses the water's velocity "
+      "variation over a cell at every step, so that a fast saturated flow "
+      "depends on the time step (the saturated USGS flume's mean speed at "
+      "0.1 s: 0.253 / 0.359 / 0.447 m/s at CFL 0.5 / 0.25 / 0.0625). "
+      "'affine' (experimental; with 'Transfer/Scheme = apic', other schemes "
+      "take 'transfer scheme'): as the skeleton's APIC, each point carries "
+      "an affine matrix C_w fitted to the water's nodal velocity (B D^-1 on "
+      "CPDI weights, the gradient on linear ones) and hands the nodes "
+      "v_w + C_w (x_i - x_p): the flume then depends little on the step "
+      "(0.126 / 0.133 m/s at CFL 0.5 / 0.25), but on CPDI weights a "
+      "saturated layer sliding on a Coulomb bed goes unstable at CFL 0.3 "
+      "and above (exact at 0.25); doc/pore_water.md, 'A saturated flume: "
+      "the time step'.");
+    prm.declare_entry(
       "Pressure rate averaging",
       "cell",
       Patterns::Selection("none|cell"),
@@ -97,6 +116,7 @@ namespace MPM
     kozeny_carman = prm.get("Permeability law") == "kozeny-carman";
     average_pressure_rate = prm.get("Pressure rate averaging") == "cell";
     project_pressure      = prm.get("Pressure projection") == "cell linear";
+    affine_requested      = prm.get("Water velocity transfer") == "affine";
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -154,6 +174,10 @@ namespace MPM
     std::vector<std::string> names(dim, "water_velocity");
     names.push_back("pore_pressure");
     names.push_back("porosity");
+    if (affine)
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          names.push_back(std::string("water_affine_") + "xyz"[a] + "xyz"[b]);
     return names;
   }
 
@@ -177,6 +201,9 @@ namespace MPM
                   0.;
         for (unsigned int d = 0; d < dim; ++d)
           props[velocity_slot() + d] = n > 0 ? props[Layout::velocity + d] : 0.;
+        if (affine)
+          for (unsigned int c = 0; c < dim * dim; ++c)
+            props[affine_slot() + c] = 0;
       }
   }
 
@@ -218,9 +245,11 @@ namespace MPM
 
   template <int dim>
   void
-  PoreWater<dim>::add_to_grid(const double                    *props,
-                              const Q1ShapeFunctions<dim>     &sf,
-                              typename PhaseKernel<dim>::Sums &sums) const
+  PoreWater<dim>::add_to_grid(
+    const double                                  *props,
+    const Q1ShapeFunctions<dim>                   &sf,
+    const typename PhaseKernel<dim>::VertexValues &offsets,
+    typename PhaseKernel<dim>::Sums               &sums) const
   {
     using Layout   = PropertyLayout<dim>;
     const double n = props[porosity_slot()];
@@ -232,6 +261,11 @@ namespace MPM
     const double         p   = props[pressure_slot()];
     const double         m_w = water_mass(props);
     const Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
+    Tensor<2, dim>       C_w;
+    if (affine)
+      for (unsigned int a = 0; a < dim; ++a)
+        for (unsigned int b = 0; b < dim; ++b)
+          C_w[a][b] = props[affine_slot() + a * dim + b];
     // Drag per unit relative velocity of the point's water.
     double k = material_permeability[material];
     if (kozeny_carman)
@@ -249,7 +283,7 @@ namespace MPM
             sums[0][i][c] += N * m_w;
             sums[4][i][c] += N * Q;
           }
-        sums[1][i] += (N * m_w) * v_w;
+        sums[1][i] += (N * m_w) * (affine ? v_w + C_w * offsets[i] : v_w);
         sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
         sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
         // The saturated volume at the nodes, in every component.
@@ -383,13 +417,14 @@ namespace MPM
   PoreWater<dim>::update_point(
     double                                                          *props,
     const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
-    const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
-      &gradients) const
+    const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &gradients,
+    const Tensor<2, dim> &affine_fit) const
   {
     // The point's own rate in place of its cell's mean.
     update_point_with_cell_mean(props,
                                 values,
                                 gradients,
+                                affine_fit,
                                 cell_rate(props, values, gradients).first);
   }
 
@@ -416,6 +451,7 @@ namespace MPM
     double                                                          *props,
     const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
     const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &gradients,
+    const Tensor<2, dim>                                            &affine_fit,
     const double cell_mean) const
   {
     const double n = props[porosity_slot()];
@@ -423,8 +459,17 @@ namespace MPM
       return;
     const double   dt  = time_step;
     Tensor<1, dim> v_w = read_vector<dim>(&props[velocity_slot()]);
-    v_w = flip_fraction * (v_w + values[0] - values[1]) +
-          (1 - flip_fraction) * values[0];
+    if (affine)
+      {
+        // APIC: the nodal velocity and the affine fit about the point.
+        v_w = values[0];
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = 0; b < dim; ++b)
+            props[affine_slot() + a * dim + b] = affine_fit[a][b];
+      }
+    else
+      v_w = flip_fraction * (v_w + values[0] - values[1]) +
+            (1 - flip_fraction) * values[0];
     for (unsigned int d = 0; d < dim; ++d)
       props[velocity_slot() + d] = v_w[d];
     const double div_s = trace(gradients[2]);

@@ -52,17 +52,21 @@ namespace MPM
     boundary_conditions.set_gravity(time_stepping.gravity);
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
+    pore_water.set_skeleton_transfer(transfer.apic() != nullptr);
     if (pore_water.active() && boundary_conditions.has_frictional_wall() &&
-        transfer.scheme().flip_fraction(1e-6) > 0)
-      pcout << "Warning: saturated materials on a frictional wall with a "
-               "FLIP share ('Transfer/Scheme = flip/pic blend', 'FLIP "
-               "fraction' > 0): the water's FLIP share was measured to "
-               "break the effective stress on the wall (a saturated layer "
-               "sliding on a Coulomb bed: its pore pressure 66 % too high "
-               "and its acceleration 31 % low; doc/pore_water.md, 'A "
-               "saturated flume: the time step'). 'Transfer/Scheme = apic' "
-               "(the default) or 'FLIP fraction = 0' transfer the water by "
-               "PIC, which is exact there.\n";
+        (pore_water.affine_transfer() ||
+         transfer.scheme().flip_fraction(1e-6) > 0))
+      pcout << "Warning: saturated materials on a frictional wall, their "
+               "water transferred with a FLIP share ('Transfer/Scheme = "
+               "flip/pic blend') or as APIC ('Pore water/Water velocity "
+               "transfer = affine'): with stiff drag these have a step "
+               "limit below CFL 0.5 (a saturated layer sliding on a "
+               "Coulomb bed: 31 % slow with the blend 0.98 at CFL 0.5, "
+               "exact at 0.1; stopped with the affine water at CFL 0.3 "
+               "and above, exact at 0.25; doc/pore_water.md, 'A saturated "
+               "flume: the time step'). The water by PIC ('Transfer/Scheme "
+               "= apic' with 'Water velocity transfer = transfer scheme', "
+               "the defaults) is exact there at CFL 0.5.\n";
     side_walls.initialize(nodal);
     if (!pore_water.active())
       for (const std::string &name : boundary_conditions.pore_pressure_boundaries())

@@ -48,6 +48,7 @@ namespace MPM
   {
   public:
     using typename PhaseKernel<dim>::Targets;
+    using typename PhaseKernel<dim>::VertexValues;
     using typename PhaseKernel<dim>::Sums;
     using typename PhaseKernel<dim>::Sources;
 
@@ -78,6 +79,7 @@ namespace MPM
     void
     add_to_grid(const double                *props,
                 const Q1ShapeFunctions<dim> &sf,
+                const VertexValues          &offsets,
                 Sums                        &sums) const override;
 
     /// None: the walls update no point.
@@ -91,8 +93,8 @@ namespace MPM
     update_point(
       double *,
       const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &,
-      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &)
-      const override
+      const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &,
+      const Tensor<2, dim> &) const override
     {
     }
 

@@ -108,6 +108,14 @@ namespace MPM
     {
       return first_slot + dim + 1;
     }
+
+    /// The water's affine matrix C_w (dim x dim, row by row): its velocity
+    /// about the point is v_w + C_w (x - xbar_p) (affine_transfer()).
+    unsigned int
+    affine_slot() const
+    {
+      return first_slot + dim + 2;
+    }
     /// @}
 
     /**
@@ -142,6 +150,24 @@ namespace MPM
      */
     double
     max_wave_speed(const MaterialLibrary &materials) const;
+
+    /**
+     * Whether the water's velocity goes by APIC's affine transfer: 'Water
+     * velocity transfer = affine' and @p apic, the skeleton's transfer is
+     * APIC (whose offsets about each point's affine centre the passes
+     * hand over). Else the water takes the skeleton's FLIP share.
+     */
+    void
+    set_skeleton_transfer(const bool apic)
+    {
+      affine = affine_requested && apic;
+    }
+
+    bool
+    affine_transfer() const
+    {
+      return affine;
+    }
 
     /// The step's time step, FLIP share and gravity (mesh frame).
     void
@@ -215,10 +241,17 @@ namespace MPM
     typename PhaseKernel<dim>::Targets
     grid_targets() override;
 
+    bool
+    needs_affine() const override
+    {
+      return affine;
+    }
+
     void
-    add_to_grid(const double                        *props,
-                const Q1ShapeFunctions<dim>         &sf,
-                typename PhaseKernel<dim>::Sums     &sums) const override;
+    add_to_grid(const double                                  *props,
+                const Q1ShapeFunctions<dim>                   &sf,
+                const typename PhaseKernel<dim>::VertexValues &offsets,
+                typename PhaseKernel<dim>::Sums &sums) const override;
 
     typename PhaseKernel<dim>::Sources
     grid_sources() override;
@@ -228,7 +261,8 @@ namespace MPM
       double                                                          *props,
       const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
-        &gradients) const override;
+                           &gradients,
+      const Tensor<2, dim> &affine_fit) const override;
 
     /// With 'Pressure rate averaging = cell' or 'Pressure projection = cell
     /// linear'.
@@ -258,8 +292,9 @@ namespace MPM
       double                                                          *props,
       const std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> &values,
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>
-                  &gradients,
-      const double cell_mean) const override;
+                           &gradients,
+      const Tensor<2, dim> &affine_fit,
+      const double          cell_mean) const override;
     /// @}
 
     /// @name The water's parameters.
@@ -312,6 +347,9 @@ namespace MPM
 
     double         time_step     = 0;
     double         flip_fraction = 0;
+    /// 'Water velocity transfer = affine', and whether it is in effect
+    /// (set_skeleton_transfer()).
+    bool affine_requested = false, affine = false;
     /// 'Pressure rate averaging = cell'.
     bool               average_pressure_rate = false;
     /// 'Pressure projection = cell linear'.

@@ -274,11 +274,25 @@ namespace MPM
     /// are not the points).
     std::vector<Tensor<1, dim>> phase_values;
     std::vector<Tensor<2, dim>> phase_gradients;
+    /// A kernel's affine fit of its first source over a point's entries
+    /// (PhaseKernel::needs_affine()): B = sum w_i u_i dx_i^T, D = sum w_i
+    /// dx_i dx_i^T, and the largest |dx_i|^2, as Apic::fit_affine() takes
+    /// them.
+    struct PhaseAffineSums
+    {
+      Tensor<2, dim> B, D;
+      double         scale = 0;
+    };
+    std::vector<PhaseAffineSums> phase_affine_sums;
 
-    /// One point's values and gradients of a phase kernel's sources.
-    using PhasePointSums =
-      std::pair<std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources>,
-                std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources>>;
+    /// One point's values and gradients of a phase kernel's sources, and
+    /// the affine fit of the first (PhaseKernel::update_point()).
+    struct PhasePointSums
+    {
+      std::array<Tensor<1, dim>, PhaseKernel<dim>::max_sources> values;
+      std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> gradients;
+      Tensor<2, dim>                                            affine;
+    };
     /// Per chunk: one cell's points' sums and positions
     /// (update_phase_points_of_cell()).
     struct PhaseCellScratch

@@ -749,6 +749,7 @@ namespace MPM
   {
     using Kernel                 = PhaseKernel<dim>;
     const typename Kernel::Targets targets = kernel.grid_targets();
+    const bool                     affine  = kernel.needs_affine();
     this->template for_active_cells<Kernel::max_targets>(
       targets,
       [&](const unsigned int c,
@@ -756,10 +757,16 @@ namespace MPM
           typename Kernel::Sums &sums) {
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
+        VertexValues       offsets{};
         for (unsigned int k = cell.first_entry; k < end; ++k)
-          kernel.add_to_grid(this->points[weights().point_of_entry(k)],
-                             this->shape_functions[k],
-                             sums);
+          {
+            if (affine)
+              offsets = weights().node_offsets(cell, k);
+            kernel.add_to_grid(this->points[weights().point_of_entry(k)],
+                               this->shape_functions[k],
+                               offsets,
+                               sums);
+          }
       });
     for (NodalVector *target : targets)
       if (target != nullptr)
@@ -775,12 +782,19 @@ namespace MPM
     using Kernel                      = PhaseKernel<dim>;
     constexpr unsigned int n_sources  = Kernel::max_sources;
     const typename Kernel::Sources sources = kernel.grid_sources();
+    // The kernel's affine fit of its first source: APIC's B D^-1 where the
+    // weights' second moment is bounded below (CPDI), else (linear
+    // weights, whose D vanishes on cell edges) the gradient.
+    const bool affine = kernel.needs_affine() && sources[0] != nullptr;
+    const bool fit_by_moments =
+      affine && weights().second_moment_bounded_below();
     // One entry's values and gradients of every source, added to @p value
-    // and @p gradient.
+    // and @p gradient, and to the affine fit's sums @p fit (or nullptr).
     const auto add_entry = [&](const ActiveCell  &cell,
                                const unsigned int k,
                                Tensor<1, dim>    *value,
-                               Tensor<2, dim>    *gradient) {
+                               Tensor<2, dim>    *gradient,
+                               PhaseAffineSums   *fit) {
       const auto &sf = this->shape_functions[k];
       for (unsigned int s = 0; s < n_sources; ++s)
         if (sources[s] != nullptr)
@@ -791,7 +805,27 @@ namespace MPM
                 value[s] += sf.value[i] * u[i];
                 gradient[s] += outer_product(u[i], sf.gradient[i]);
               }
+            if (s == 0 && fit != nullptr)
+              {
+                const VertexValues dx = weights().node_offsets(cell, k);
+                for (unsigned int i = 0; i < n_vertices; ++i)
+                  {
+                    const Tensor<1, dim> w_dx = sf.value[i] * dx[i];
+                    fit->B += outer_product(u[i], w_dx);
+                    fit->D += outer_product(w_dx, dx[i]);
+                    fit->scale = std::max(fit->scale, dx[i].norm_square());
+                  }
+              }
           }
+    };
+    const auto affine_fit = [&](const PhaseAffineSums &fit,
+                                const Tensor<2, dim>  &gradient) {
+      if (!affine)
+        return Tensor<2, dim>();
+      if (!fit_by_moments ||
+          !(determinant(fit.D) > 1e-10 * std::pow(fit.scale, dim)))
+        return gradient;
+      return Tensor<2, dim>(fit.B * invert(fit.D));
     };
     const bool cell_means = kernel.averages_over_cells();
     if constexpr (Weights::entries_are_points)
@@ -815,9 +849,15 @@ namespace MPM
                     scratch.sums.assign(cell.n_points, {});
                     for (unsigned int k = cell.first_entry; k < end; ++k)
                       {
-                        auto &[values, gradients] =
+                        PhasePointSums &sums =
                           scratch.sums[k - cell.first_entry];
-                        add_entry(cell, k, values.data(), gradients.data());
+                        PhaseAffineSums fit;
+                        add_entry(cell,
+                                  k,
+                                  sums.values.data(),
+                                  sums.gradients.data(),
+                                  fit_by_moments ? &fit : nullptr);
+                        sums.affine = affine_fit(fit, sums.gradients[0]);
                       }
                     update_phase_points_of_cell(kernel,
                                                 cell.first_entry,
@@ -829,8 +869,16 @@ namespace MPM
                   {
                     std::array<Tensor<1, dim>, n_sources> values;
                     std::array<Tensor<2, dim>, n_sources> gradients;
-                    add_entry(cell, k, values.data(), gradients.data());
-                    kernel.update_point(this->points[k], values, gradients);
+                    PhaseAffineSums                       fit;
+                    add_entry(cell,
+                              k,
+                              values.data(),
+                              gradients.data(),
+                              fit_by_moments ? &fit : nullptr);
+                    kernel.update_point(this->points[k],
+                                        values,
+                                        gradients,
+                                        affine_fit(fit, gradients[0]));
                   }
               }
           });
@@ -845,6 +893,8 @@ namespace MPM
                             Tensor<1, dim>());
         phase_gradients.assign(std::size_t(n_points) * n_sources,
                                Tensor<2, dim>());
+        phase_affine_sums.assign(fit_by_moments ? n_points : 0,
+                                 PhaseAffineSums());
         for (const ActiveCell &cell : this->active_cells)
           {
             const unsigned int end = cell.first_entry + cell.n_points;
@@ -854,9 +904,15 @@ namespace MPM
                 add_entry(cell,
                           k,
                           &phase_values[p * n_sources],
-                          &phase_gradients[p * n_sources]);
+                          &phase_gradients[p * n_sources],
+                          fit_by_moments ? &phase_affine_sums[p] : nullptr);
               }
           }
+        const auto affine_of_point = [&](const unsigned int p) {
+          return affine_fit(fit_by_moments ? phase_affine_sums[p] :
+                                             PhaseAffineSums(),
+                            phase_gradients[std::size_t(p) * n_sources]);
+        };
         if (cell_means)
           {
             // The points in chunks of their own cells (point_cell_begin).
@@ -872,14 +928,15 @@ namespace MPM
                    p < point_cell_begin[c + 1];
                    ++p)
                 {
-                  auto &[values, gradients] =
-                    scratch.sums[p - point_cell_begin[c]];
+                  PhasePointSums &sums = scratch.sums[p - point_cell_begin[c]];
                   for (unsigned int s = 0; s < n_sources; ++s)
                     {
-                      values[s] = phase_values[std::size_t(p) * n_sources + s];
-                      gradients[s] =
+                      sums.values[s] =
+                        phase_values[std::size_t(p) * n_sources + s];
+                      sums.gradients[s] =
                         phase_gradients[std::size_t(p) * n_sources + s];
                     }
+                  sums.affine = affine_of_point(p);
                 }
               update_phase_points_of_cell(kernel,
                                           point_cell_begin[c],
@@ -907,7 +964,8 @@ namespace MPM
                                }
                              kernel.update_point(this->points[p],
                                                  values,
-                                                 gradients);
+                                                 gradients,
+                                                 affine_of_point(p));
                            }
                        });
       }
@@ -928,9 +986,10 @@ namespace MPM
     double sum = 0, weight = 0;
     for (unsigned int q = 0; q < n; ++q)
       {
-        const auto &[values, gradients] = scratch.sums[q];
-        const auto [rate, w] =
-          kernel.cell_rate(this->points[first + q], values, gradients);
+        const PhasePointSums &sums = scratch.sums[q];
+        const auto [rate, w]       = kernel.cell_rate(this->points[first + q],
+                                                sums.values,
+                                                sums.gradients);
         sum += w * rate;
         weight += w;
       }
@@ -939,10 +998,11 @@ namespace MPM
     auto point = first_point;
     for (unsigned int q = 0; q < n; ++q, ++point)
       {
-        const auto &[values, gradients] = scratch.sums[q];
+        const PhasePointSums &sums = scratch.sums[q];
         kernel.update_point_with_cell_mean(this->points[first + q],
-                                           values,
-                                           gradients,
+                                           sums.values,
+                                           sums.gradients,
+                                           sums.affine,
                                            mean);
         scratch.positions.push_back(point->get_location());
       }

@@ -55,13 +55,29 @@ namespace MPM
     grid_targets() = 0;
 
     /**
+     * Whether the kernel's velocity is affine about each point, as APIC's:
+     * add_to_grid() then gets the offsets of the cell's vertices from the
+     * point's affine centre, and update_point() the affine fit of its first
+     * source (ParticleGridWeights::map_phase()). false by default: the
+     * passes then compute neither.
+     */
+    virtual bool
+    needs_affine() const
+    {
+      return false;
+    }
+
+    /**
      * Add the share of the point with properties @p props at its weights
      * @p sf (values and gradients at the vertices of one cell) to the
-     * per-vertex @p sums of grid_targets().
+     * per-vertex @p sums of grid_targets(). @p offsets: x_i - xbar_p for
+     * the cell's vertices (the skeleton's APIC offsets) if needs_affine(),
+     * else zero.
      */
     virtual void
     add_to_grid(const double                *props,
                 const Q1ShapeFunctions<dim> &sf,
+                const VertexValues          &offsets,
                 Sums                        &sums) const = 0;
 
     /// The nodal fields whose values and gradients update_point() reads.
@@ -71,13 +87,16 @@ namespace MPM
     /**
      * Update the point with properties @p props from the @p values and
      * @p gradients at it of grid_sources() (sum_i N_i u_i and
-     * sum_i u_i (x) grad N_i over all its weights).
+     * sum_i u_i (x) grad N_i over all its weights) and, if needs_affine(),
+     * the affine fit @p affine of the first source about the point (APIC's
+     * C = B D^-1 where the weights' second moment D is bounded below, else
+     * the gradient; zero otherwise).
      */
     virtual void
-    update_point(double                                          *props,
+    update_point(double                                        *props,
                  const std::array<Tensor<1, dim>, max_sources> &values,
-                 const std::array<Tensor<2, dim>, max_sources> &gradients)
-      const = 0;
+                 const std::array<Tensor<2, dim>, max_sources> &gradients,
+                 const Tensor<2, dim> &affine) const = 0;
 
     /**
      * Whether the update takes, beside the point's own values, the mean
@@ -111,10 +130,11 @@ namespace MPM
       double                                        *props,
       const std::array<Tensor<1, dim>, max_sources> &values,
       const std::array<Tensor<2, dim>, max_sources> &gradients,
+      const Tensor<2, dim>                          &affine,
       const double                                   cell_mean) const
     {
       (void)cell_mean;
-      update_point(props, values, gradients);
+      update_point(props, values, gradients, affine);
     }
 
     /**
