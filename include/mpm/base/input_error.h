@@ -1,6 +1,8 @@
 #ifndef mpm_base_input_error_h
 #define mpm_base_input_error_h
 
+#include <deal.II/base/utilities.h>
+
 #include <cerrno>
 #include <cstdlib>
 #include <stdexcept>
@@ -42,11 +44,8 @@ namespace MPM
   inline double
   parse_number(const std::string &text, const std::string &where)
   {
-    const std::size_t first = text.find_first_not_of(" \t");
-    const std::size_t last  = text.find_last_not_of(" \t");
-    const std::string trimmed =
-      first == std::string::npos ? "" : text.substr(first, last - first + 1);
-    char *end = nullptr;
+    const std::string trimmed = dealii::Utilities::trim(text);
+    char             *end     = nullptr;
     errno     = 0;
     const double value =
       trimmed.empty() ? 0. : std::strtod(trimmed.c_str(), &end);

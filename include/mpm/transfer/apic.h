@@ -154,11 +154,22 @@ namespace MPM
                const double          scale,
                double               *affine)
     {
-      const Tensor<2, dim> C = determinant(D) > 1e-10 * std::pow(scale, dim) ?
-                                 B * invert(D) :
-                                 gradient;
+      const Tensor<2, dim> C = affine_fit(B, D, gradient, scale);
       store_affine(C, D, affine);
       return C;
+    }
+
+    /// fit_affine()'s C_p without storing it (a phase's affine transfer,
+    /// PhaseKernel::needs_affine()).
+    static Tensor<2, dim>
+    affine_fit(const Tensor<2, dim> &B,
+               const Tensor<2, dim> &D,
+               const Tensor<2, dim> &gradient,
+               const double          scale)
+    {
+      return determinant(D) > 1e-10 * std::pow(scale, dim) ?
+               Tensor<2, dim>(B * invert(D)) :
+               gradient;
     }
 
     /// fit_affine() for a point with linear weights in a cell: shape

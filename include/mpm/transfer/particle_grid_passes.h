@@ -274,16 +274,10 @@ namespace MPM
     /// are not the points).
     std::vector<Tensor<1, dim>> phase_values;
     std::vector<Tensor<2, dim>> phase_gradients;
-    /// A kernel's affine fit of its first source over a point's entries
-    /// (PhaseKernel::needs_affine()): B = sum w_i u_i dx_i^T, D = sum w_i
-    /// dx_i dx_i^T, and the largest |dx_i|^2, as Apic::fit_affine() takes
-    /// them.
-    struct PhaseAffineSums
-    {
-      Tensor<2, dim> B, D;
-      double         scale = 0;
-    };
-    std::vector<PhaseAffineSums> phase_affine_sums;
+    /// A kernel's affine fit of its first source over each point's entries
+    /// (PhaseKernel::needs_affine(); weights whose entries are not the
+    /// points).
+    std::vector<AffineFitSums> phase_affine_sums;
 
     /// One point's values and gradients of a phase kernel's sources, and
     /// the affine fit of the first (PhaseKernel::update_point()).

@@ -794,7 +794,7 @@ namespace MPM
                                const unsigned int k,
                                Tensor<1, dim>    *value,
                                Tensor<2, dim>    *gradient,
-                               PhaseAffineSums   *fit) {
+                               AffineFitSums     *fit) {
       const auto &sf = this->shape_functions[k];
       for (unsigned int s = 0; s < n_sources; ++s)
         if (sources[s] != nullptr)
@@ -806,26 +806,16 @@ namespace MPM
                 gradient[s] += outer_product(u[i], sf.gradient[i]);
               }
             if (s == 0 && fit != nullptr)
-              {
-                const VertexValues dx = weights().node_offsets(cell, k);
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  {
-                    const Tensor<1, dim> w_dx = sf.value[i] * dx[i];
-                    fit->B += outer_product(u[i], w_dx);
-                    fit->D += outer_product(w_dx, dx[i]);
-                    fit->scale = std::max(fit->scale, dx[i].norm_square());
-                  }
-              }
+              add_to_affine_fit(cell, k, u, *fit);
           }
     };
-    const auto affine_fit = [&](const PhaseAffineSums &fit,
-                                const Tensor<2, dim>  &gradient) {
+    const auto affine_fit = [&](const AffineFitSums  &fit,
+                                const Tensor<2, dim> &gradient) {
       if (!affine)
         return Tensor<2, dim>();
-      if (!fit_by_moments ||
-          !(determinant(fit.D) > 1e-10 * std::pow(fit.scale, dim)))
+      if (!fit_by_moments)
         return gradient;
-      return Tensor<2, dim>(fit.B * invert(fit.D));
+      return Apic<dim>::affine_fit(fit.B, fit.D, fit.gradient, fit.node_scale);
     };
     const bool cell_means = kernel.averages_over_cells();
     if constexpr (Weights::entries_are_points)
@@ -851,7 +841,7 @@ namespace MPM
                       {
                         PhasePointSums &sums =
                           scratch.sums[k - cell.first_entry];
-                        PhaseAffineSums fit;
+                        AffineFitSums fit;
                         add_entry(cell,
                                   k,
                                   sums.values.data(),
@@ -869,7 +859,7 @@ namespace MPM
                   {
                     std::array<Tensor<1, dim>, n_sources> values;
                     std::array<Tensor<2, dim>, n_sources> gradients;
-                    PhaseAffineSums                       fit;
+                    AffineFitSums                       fit;
                     add_entry(cell,
                               k,
                               values.data(),
@@ -894,7 +884,7 @@ namespace MPM
         phase_gradients.assign(std::size_t(n_points) * n_sources,
                                Tensor<2, dim>());
         phase_affine_sums.assign(fit_by_moments ? n_points : 0,
-                                 PhaseAffineSums());
+                                 AffineFitSums());
         for (const ActiveCell &cell : this->active_cells)
           {
             const unsigned int end = cell.first_entry + cell.n_points;
@@ -910,7 +900,7 @@ namespace MPM
           }
         const auto affine_of_point = [&](const unsigned int p) {
           return affine_fit(fit_by_moments ? phase_affine_sums[p] :
-                                             PhaseAffineSums(),
+                                             AffineFitSums(),
                             phase_gradients[std::size_t(p) * n_sources]);
         };
         if (cell_means)
