@@ -573,9 +573,12 @@ namespace MPM
                 // weight less the pore pressure.
                 const bool   saturated = material.porosity > 0 &&
                                        pore_water.pressure != nullptr;
+                // Submerged: less the still water's buoyancy, whose
+                // hydrostatic pressure the pore pressure does not hold.
                 const double rho =
                   material.density +
-                  (saturated ? material.porosity * pore_water.density : 0.);
+                  (saturated ? material.porosity * pore_water.density : 0.) -
+                  (saturated ? pore_water.ambient_density : 0.);
                 double s_v = rho * gravity[dim - 1] * (surface - X[dim - 1]);
                 if (saturated)
                   s_v += pore_water.pressure(X);

@@ -54,6 +54,23 @@ namespace MPM
                       "y = 2 m. The materials' 'Initial stress' is their "
                       "effective stress.");
     prm.declare_entry(
+      "Submerged",
+      "false",
+      Patterns::Bool(),
+      "Whether the scene lies in still water whose surface is above every "
+      "material (a column in a tank, a lake's bed; every material must "
+      "then be saturated). The points' pore pressure is then the excess "
+      "over the still water's hydrostatic pressure: the water's own weight "
+      "is balanced by that pressure and left out, the skeleton carries its "
+      "buoyant weight (rho_d - (1 - n) rho_w) V g, and a free surface of "
+      "the material is at the still water's pressure (excess 0), as the "
+      "weak form has it. 'Initial pore pressure', the boundaries' 'Pore "
+      "pressure' and every reported pore pressure are excess pressures, "
+      "and the geostatic stress is the buoyant weight. The still water's "
+      "own flow and its drag on the material's surface are not modelled. "
+      "false: the pore pressure is the total one and the water has its "
+      "weight (a water table inside the material).");
+    prm.declare_entry(
       "Water velocity transfer",
       "transfer scheme",
       Patterns::Selection("affine|transfer scheme"),
@@ -117,6 +134,7 @@ namespace MPM
     average_pressure_rate = prm.get("Pressure rate averaging") == "cell";
     project_pressure      = prm.get("Pressure projection") == "cell linear";
     affine_requested      = prm.get("Water velocity transfer") == "affine";
+    submerged             = prm.get_bool("Submerged");
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -151,6 +169,14 @@ namespace MPM
         material_permeability.push_back(materials[m].permeability);
         is_active = is_active || materials[m].porosity > 0;
       }
+    if (submerged)
+      for (unsigned int m = 0; m < materials.size(); ++m)
+        check_input(materials[m].porosity > 0,
+                    "Pore water/Submerged = true: material '" +
+                      materials[m].name +
+                      "' is dry ('Porosity' 0). In still water every "
+                      "material must be saturated (a dry one's buoyancy "
+                      "is not modelled).");
     if (!is_active)
       return;
     for (NodalVector *field : {&mass,
@@ -284,8 +310,20 @@ namespace MPM
             sums[4][i][c] += N * Q;
           }
         sums[1][i] += (N * m_w) * (affine ? v_w + C_w * offsets[i] : v_w);
-        sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
-        sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
+        if (submerged)
+          {
+            // The hydrostatic part of the still water's pressure balances
+            // the water's weight and lifts the skeleton by the water it
+            // displaces.
+            sums[2][i] += (V * n * p) * sf.gradient[i];
+            sums[3][i] += (V * (1 - n) * p) * sf.gradient[i] -
+                          (N * V * (1 - n) * water_density) * gravity;
+          }
+        else
+          {
+            sums[2][i] += (N * m_w) * gravity + (V * n * p) * sf.gradient[i];
+            sums[3][i] += (V * (1 - n) * p) * sf.gradient[i];
+          }
         // The saturated volume at the nodes, in every component.
         for (unsigned int c = 0; c < dim; ++c)
           sums[5][i][c] += N * V;

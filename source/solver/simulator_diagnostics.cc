@@ -148,7 +148,8 @@ namespace MPM
     GlobalStatistics<dim> s;
     // The pore water's mass (also for the periodic correction below), its
     // momentum, and the saturated volume and sum V p.
-    double         water_mass = 0, saturated_volume = 0, pressure_sum = 0;
+    double water_mass = 0, saturated_volume = 0, pressure_sum = 0,
+           displaced_mass = 0;
     Tensor<1, dim> water_momentum;
     s.time      = time;
     s.time_step = time_step;
@@ -172,6 +173,7 @@ namespace MPM
           {
             const double m_w = pore_water.water_mass(props.data());
             water_mass += m_w;
+            displaced_mass += pore_water.displaced_water_mass(props.data());
             water_momentum +=
               m_w * read_vector<dim>(&props[pore_water.velocity_slot()]);
             saturated_volume += props[Layout::volume];
@@ -212,8 +214,16 @@ namespace MPM
         // for a uniform saturation).
         const double water_share =
           pore_water.active() && s.mass > 0 ? water_mass / s.mass : 0.;
+        // Submerged: the skeleton's buoyant weight instead.
+        const double weight_share =
+          pore_water.is_submerged() ?
+            1 - (s.mass > 0 ?
+                   Utilities::MPI::sum(displaced_mass, mpi_communicator) /
+                     s.mass :
+                   0.) :
+            1 + water_share;
         s.gravitational_potential_energy +=
-          (1 + water_share) * (time_stepping.gravity * shift);
+          weight_share * (time_stepping.gravity * shift);
         unwrapped_centre_shift = shift;
       }
     s.removed_energy = lost_points.totals(mpi_communicator).energy;
@@ -258,7 +268,9 @@ namespace MPM
     if (pore_water.active() && props[pore_water.porosity_slot()] > 0)
       {
         // The point's water, n rho_w V: its motion, its compression
-        // (n V p^2 / (2 K_w)) and its weight.
+        // (n V p^2 / (2 K_w)) and its weight; submerged, the still water's
+        // buoyancy on the skeleton in place of the weight (the water's
+        // weight and the hydrostatic pressure cancel).
         const double n   = props[pore_water.porosity_slot()];
         const double V   = props[Layout::volume];
         const double m_w = pore_water.water_mass(props);
@@ -267,7 +279,11 @@ namespace MPM
           0.5 * m_w *
           read_vector<dim>(&props[pore_water.velocity_slot()]).norm_square();
         energy[1] += n * V * p * p / (2 * pore_water.get_bulk_modulus());
-        energy[2] += -m_w * (time_stepping.gravity * x);
+        if (pore_water.is_submerged())
+          energy[2] += pore_water.displaced_water_mass(props) *
+                       (time_stepping.gravity * x);
+        else
+          energy[2] += -m_w * (time_stepping.gravity * x);
       }
     return energy;
   }

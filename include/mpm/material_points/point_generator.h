@@ -46,14 +46,19 @@ namespace MPM
    */
   /**
    * What the geostatic stress of a saturated material needs of the pore
-   * water (PoreWater::initial_state()): its density and the pore pressure
-   * at a point of the scene at the start (compression positive).
+   * water (PoreWater::initial_state()): its density, the pore pressure
+   * at a point of the scene at the start (compression positive), and the
+   * density of the still water the scene is submerged in ('Pore water/
+   * Submerged'; 0: not submerged), whose buoyancy the effective stress
+   * does not carry (the pore pressure is then the excess over its
+   * hydrostatic pressure).
    */
   template <int dim>
   struct InitialPoreWater
   {
     double                                    density = 0;
     std::function<double(const Point<dim> &)> pressure;
+    double                                    ambient_density = 0;
   };
 
 

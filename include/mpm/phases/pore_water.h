@@ -137,9 +137,11 @@ namespace MPM
     {
       if (!is_active)
         return {};
-      return {water_density, [this](const Point<dim> &x) {
+      return {water_density,
+              [this](const Point<dim> &x) {
                 return initial_pressure->value(x);
-              }};
+              },
+              submerged ? water_density : 0.};
     }
 
     /**
@@ -325,6 +327,30 @@ namespace MPM
     {
       return viscosity;
     }
+
+    /**
+     * 'Submerged': the scene lies in still water, the points' pore
+     * pressure is the excess over its hydrostatic pressure, the water
+     * carries no weight and the skeleton its buoyant weight (rho_d - (1 -
+     * n) rho_w) V g.
+     */
+    bool
+    is_submerged() const
+    {
+      return submerged;
+    }
+
+    /// The still water's weight that the point with properties @p props
+    /// displaces with its skeleton, (1 - n) rho_w V, with 'Submerged'
+    /// (0 otherwise, and for a dry point).
+    double
+    displaced_water_mass(const double *props) const
+    {
+      const double n = props[porosity_slot()];
+      return submerged && n > 0 ?
+               (1 - n) * water_density * props[PropertyLayout<dim>::volume] :
+               0.;
+    }
     /// @}
 
   private:
@@ -335,6 +361,8 @@ namespace MPM
     double      viscosity        = 1e-3;
     /// 'Permeability law = kozeny-carman'.
     bool        kozeny_carman    = false;
+    /// 'Submerged': the pore pressure is the excess over still water's.
+    bool                                 submerged                   = false;
     std::string initial_pressure_expression = "0";
     std::unique_ptr<FunctionParser<dim>> initial_pressure;
 
