@@ -27,9 +27,10 @@ namespace MPM
                       Patterns::Double(0),
                       "Bulk modulus K_w of the pore water in Pa: the pore "
                       "pressure rises by K_w / n times the volume of water "
-                      "a point gains per volume of pores. With the "
-                      "undrained P wave sqrt((M + K_w / n) / rho) it sets "
-                      "the time step.");
+                      "a point gains per volume of pores. It sets the time "
+                      "step through the two phases' fast P wave, a little "
+                      "faster than the undrained sqrt((M + K_w / n) / rho) "
+                      "(doc/pore_water.md, 'The formulation').");
     prm.declare_entry("Viscosity",
                       "1e-3",
                       Patterns::Double(0),
@@ -79,16 +80,17 @@ namespace MPM
       "fraction'; PIC under APIC and XPIC). PIC loses the water's velocity "
       "variation over a cell at every step, so that a fast saturated flow "
       "depends on the time step (the saturated USGS flume's mean speed at "
-      "0.1 s: 0.253 / 0.359 / 0.447 m/s at CFL 0.5 / 0.25 / 0.0625). "
+      "0.1 s: 0.253 / 0.359 / 0.447 m/s with steps of 8.6e-6 / 4.2e-6 / "
+      "1.1e-6 s). "
       "'affine' (experimental; with 'Transfer/Scheme = apic', other schemes "
       "take 'transfer scheme'): as the skeleton's APIC, each point carries "
       "an affine matrix C_w fitted to the water's nodal velocity (B D^-1 on "
       "CPDI weights, the gradient on linear ones) and hands the nodes "
       "v_w + C_w (x_i - x_p): the flume then depends little on the step "
-      "(0.126 / 0.133 m/s at CFL 0.5 / 0.25), but on CPDI weights a "
-      "saturated layer sliding on a Coulomb bed goes unstable at CFL 0.3 "
-      "and above (exact at 0.25); doc/pore_water.md, 'A saturated flume: "
-      "the time step'.");
+      "(0.126 / 0.133 m/s with steps of 8.6e-6 / 4.2e-6 s), but on CPDI "
+      "weights a saturated layer sliding on a Coulomb bed goes unstable "
+      "with steps of 0.3 and more of the undrained wave's CFL step (exact "
+      "at 0.25); doc/pore_water.md, 'A saturated flume: the time step'.");
     prm.declare_entry(
       "Pressure rate averaging",
       "cell",
@@ -236,6 +238,30 @@ namespace MPM
 
   template <int dim>
   double
+  PoreWater<dim>::fastest_wave_speed(const double M,
+                                     const double rho_d,
+                                     const double n) const
+  {
+    // The P waves of the two phases without drag: u_s and u_w with the
+    // stiffness [[M + K (1 - n)^2, K (1 - n) n], [K (1 - n) n, K n^2]],
+    // K = K_w / n, against the masses diag(rho_d, n rho_w). c^2 are the
+    // eigenvalues of the 2 x 2 generalised problem; the largest bounds
+    // the undrained wave (its Rayleigh quotient for u_s = u_w), the
+    // skeleton's and the water's own, so the step it sets is stable
+    // whatever the drag.
+    const double K     = bulk_modulus / n;
+    const double rho_w = n * water_density;
+    const double a     = (M + K * (1 - n) * (1 - n)) / rho_d;
+    const double b     = K * n * n / rho_w;
+    const double trace = a + b;
+    const double det   = M * K * n * n / (rho_d * rho_w);
+    return std::sqrt(0.5 * trace +
+                     std::sqrt(std::max(0., 0.25 * trace * trace - det)));
+  }
+
+
+  template <int dim>
+  double
   PoreWater<dim>::max_wave_speed(const MaterialLibrary &materials) const
   {
     double c = 0;
@@ -246,11 +272,7 @@ namespace MPM
           continue;
         const double M     = materials[m].model->p_wave_modulus();
         const double rho_d = materials[m].density;
-        c = std::max({c,
-                      std::sqrt((M + bulk_modulus / n) /
-                                (rho_d + n * water_density)),
-                      std::sqrt(bulk_modulus / water_density),
-                      std::sqrt(M / rho_d)});
+        c                  = std::max(c, fastest_wave_speed(M, rho_d, n));
       }
     return c;
   }
