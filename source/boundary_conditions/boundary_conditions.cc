@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 
 namespace MPM
 {
@@ -85,6 +86,7 @@ namespace MPM
                           "boundary (doc/boundary_conditions.md). " +
                             BasalLawRegistry<dim>::descriptions());
         BasalLawRegistry<dim>::declare_parameters(prm);
+        NormalStressMemory::declare_parameters(prm);
         prm.declare_entry("Normal",
                           "mesh",
                           Patterns::Selection("mesh|given"),
@@ -174,11 +176,16 @@ namespace MPM
           {
             try
               {
-                s.law = BasalLawRegistry<dim>::create(
-                  prm.get("Basal law"),
-                  "Basal law",
-                  prm,
-                  prm.get_double("Friction coefficient"));
+                auto law =
+                  BasalLawRegistry<dim>::create(prm.get("Basal law"),
+                                                "Basal law",
+                                                prm,
+                                                prm.get_double(
+                                                  "Friction coefficient"));
+                NormalStressMemory memory;
+                memory.parse_parameters(prm);
+                law->set_normal_stress_memory(memory);
+                s.law = std::move(law);
               }
             catch (const InputError &e)
               {
@@ -271,12 +278,16 @@ namespace MPM
     const std::vector<ContactLocations> contact_before =
       Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
                                  contact_locations());
+    const std::vector<RememberedNormalForces> remembered_before =
+      Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
+                                 remembered_normal_forces());
     const std::vector<NodeFrame<dim>> frames =
       compute_node_frames(grid, layout, specs, gravity_magnitude, periodic_nodes);
     make_wall_constraints(frames, grid.locally_relevant_dofs, normal_constraints);
     nodes = make_projections(frames, normal_constraints, layout);
     contact_state.assign(nodes.size(), ContactState::free);
     set_contact(merge(contact_before));
+    set_remembered_normal_forces(merge(remembered_before));
     wall_gap.setup(grid, specs, layout, nodes);
     tractions.setup(grid, specs, layout, periodic_nodes);
     pore_pressures.setup(grid, specs, layout, periodic_nodes);
@@ -473,16 +484,23 @@ namespace MPM
 
 
   template <int dim>
+  bool
+  BoundaryConditions<dim>::location_less(const Point<dim> &a,
+                                         const Point<dim> &b)
+  {
+    // Exact comparison: the locations are vertices of the same mesh.
+    return std::lexicographical_compare(a.begin_raw(),
+                                        a.end_raw(),
+                                        b.begin_raw(),
+                                        b.end_raw());
+  }
+
+
+  template <int dim>
   void
   BoundaryConditions<dim>::set_contact(const ContactLocations &locations)
   {
-    // Exact comparison: the locations are vertices of the same mesh.
-    const auto less = [](const Point<dim> &a, const Point<dim> &b) {
-      return std::lexicographical_compare(a.begin_raw(),
-                                          a.end_raw(),
-                                          b.begin_raw(),
-                                          b.end_raw());
-    };
+    const auto less = &BoundaryConditions<dim>::location_less;
     std::array<std::vector<Point<dim>>, 2> sorted = locations;
     for (auto &list : sorted)
       std::sort(list.begin(), list.end(), less);
@@ -496,6 +514,49 @@ namespace MPM
         contains(1, nodes[k].location) ? ContactState::stuck :
         contains(0, nodes[k].location) ? ContactState::sliding :
                                          ContactState::free;
+  }
+
+
+  template <int dim>
+  typename BoundaryConditions<dim>::RememberedNormalForces
+  BoundaryConditions<dim>::remembered_normal_forces() const
+  {
+    RememberedNormalForces remembered;
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      if (k < remembered_normal_force.size() && remembered_normal_force[k] >= 0)
+        {
+          remembered.locations.push_back(nodes[k].location);
+          remembered.forces.push_back(remembered_normal_force[k]);
+        }
+    return remembered;
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_remembered_normal_forces(
+    const RememberedNormalForces &remembered)
+  {
+    remembered_normal_force.assign(nodes.size(), -1.);
+    std::vector<unsigned int> order(remembered.locations.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](const auto i, const auto j) {
+      return location_less(remembered.locations[i], remembered.locations[j]);
+    });
+    for (unsigned int k = 0; k < nodes.size(); ++k)
+      if (nodes[k].frictional)
+        {
+          const auto it =
+            std::lower_bound(order.begin(),
+                             order.end(),
+                             nodes[k].location,
+                             [&](const unsigned int i, const Point<dim> &x) {
+                               return location_less(remembered.locations[i], x);
+                             });
+          if (it != order.end() &&
+              !location_less(nodes[k].location, remembered.locations[*it]))
+            remembered_normal_force[k] = remembered.forces[*it];
+        }
   }
 
 
@@ -554,6 +615,8 @@ namespace MPM
                                        w.n_i,
                                        mass.local_element(node.local_dofs[0]));
           }
+        if (node.frictional && node.law->normal_stress_memory().active())
+          relief = remembered_normal_relief(k, v, a, mass, dt, held, relief);
         std::array<double, 2> edge_relief{{0., 0.}};
         if (water != nullptr && node.edge_friction)
           edge_relief = edge_pore_water_relief(k, *water, mass, dt);
@@ -580,6 +643,38 @@ namespace MPM
         for (unsigned int c = 0; c < dim; ++c)
           acceleration.local_element(node.local_dofs[c]) = a[c];
       }
+  }
+
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::remembered_normal_relief(const unsigned int    k,
+                                                    const Tensor<1, dim> &v,
+                                                    const Tensor<1, dim> &a,
+                                                    const NodalVector    &mass,
+                                                    const double          dt,
+                                                    const bool            held,
+                                                    const double relief)
+  {
+    // The normal force the Coulomb part would take now, N = (r - relief)
+    // m with r the reaction per unit mass, against the remembered N_m.
+    const auto           &node     = nodes[k];
+    const Tensor<1, dim> &n        = node.normal;
+    const double          reaction = (v * n) / dt + a * n;
+    double               &N_m      = remembered_normal_force[k];
+    if (reaction <= 0)
+      {
+        // Not pushing: the wall forgets the node's normal force.
+        N_m = -1;
+        return relief;
+      }
+    const double m   = mass.local_element(node.local_dofs[0]);
+    const double now = std::max(reaction - relief, 0.) * m;
+    N_m = held && N_m >= 0 ? node.law->normal_stress_memory().relax(
+                               N_m, now, (v - (v * n) * n).norm(), dt) :
+                             now;
+    // frictional_acceleration() takes max(r - relief, 0): N_m / m.
+    return reaction - N_m / m;
   }
 
 

@@ -44,8 +44,9 @@ namespace MPM
     // 4: the largest state-dependent wave speed; 5: the points' mass times
     // their shifts through periodic boundaries; 6: the rest criterion's
     // state; 7: the energies of the run's start for the stability check
-    // (older formats are still read).
-    const unsigned int  format      = 7;
+    // 8: the normal forces the frictional walls remember (older formats
+    // are still read).
+    const unsigned int      format        = 8;
     const Tensor<1, dim> wrapped_shift = wrapped_mass_shift();
     std::array<double, dim> wrapped_shift_values;
     for (unsigned int d = 0; d < dim; ++d)
@@ -67,6 +68,10 @@ namespace MPM
       Utilities::MPI::all_gather(mpi_communicator,
                                  boundary_conditions.contact_locations()));
 
+    const auto remembered =
+      BoundaryConditions<dim>::merge(Utilities::MPI::all_gather(
+        mpi_communicator, boundary_conditions.remembered_normal_forces()));
+
     std::ostringstream state;
     {
       boost::archive::binary_oarchive ar(state);
@@ -75,7 +80,8 @@ namespace MPM
          << removed.mass << n_repartitions << stats_bytes << output_writer
          << postprocessor_names << postprocessor_states << removed.energy
          << contact[0] << contact[1] << max_state_wave_speed
-         << wrapped_shift_values << rest_criterion << stability_monitor;
+         << wrapped_shift_values << rest_criterion << stability_monitor
+         << remembered.locations << remembered.forces;
     }
     return state.str();
   }
@@ -94,9 +100,9 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format >= 1 && format <= 7 && space_dim == dim,
+    check_input(format >= 1 && format <= 8 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
-                           "of dealii-mpm or for another dimension."));
+                            "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
                 std::string("The checkpoint's mesh has " +
                            std::to_string(n_cells) +
@@ -128,7 +134,12 @@ namespace MPM
     // Older checkpoints: the energies of the resumed state (set-up).
     if (format >= 7)
       ar >> stability_monitor;
+    // Older checkpoints: no memory (N* = N at the next contact).
+    typename BoundaryConditions<dim>::RememberedNormalForces remembered;
+    if (format >= 8)
+      ar >> remembered.locations >> remembered.forces;
     boundary_conditions.set_contact(contact);
+    boundary_conditions.set_remembered_normal_forces(remembered);
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
                            "postprocessors '" +

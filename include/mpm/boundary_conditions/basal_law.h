@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <mpm/base/plugin_registry.h>
+#include <mpm/boundary_conditions/normal_stress_memory.h>
 
 #include <memory>
 #include <string>
@@ -89,6 +90,20 @@ namespace MPM
       return mu * reaction * dt;
     }
 
+    /// How the normal force of static_capacity() follows the wall's
+    /// present one (the boundary's 'Normal stress memory length').
+    const NormalStressMemory &
+    normal_stress_memory() const
+    {
+      return memory;
+    }
+
+    void
+    set_normal_stress_memory(const NormalStressMemory &m)
+    {
+      memory = m;
+    }
+
     /// Whether sliding_speed() does anything (then the wall nodes'
     /// WallNodeGeometry is computed).
     virtual bool
@@ -131,6 +146,9 @@ namespace MPM
 
   protected:
     const double mu;
+
+  private:
+    NormalStressMemory memory;
   };
 
 

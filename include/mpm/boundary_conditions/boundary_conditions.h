@@ -247,6 +247,45 @@ namespace MPM
     }
 
     /**
+     * The normal forces N_m remembered by the frictional nodes of walls
+     * with a normal-stress memory (NormalStressMemory), by location: kept
+     * like the contact state through setup() and in checkpoints.
+     */
+    struct RememberedNormalForces
+    {
+      std::vector<Point<dim>> locations;
+      std::vector<double>     forces;
+
+      template <class Archive>
+      void
+      serialize(Archive &ar, const unsigned int)
+      {
+        ar &locations &forces;
+      }
+    };
+
+    RememberedNormalForces
+    remembered_normal_forces() const;
+
+    void
+    set_remembered_normal_forces(const RememberedNormalForces &remembered);
+
+    /// The lists of several ranks as one.
+    static RememberedNormalForces
+    merge(const std::vector<RememberedNormalForces> &per_rank)
+    {
+      RememberedNormalForces all;
+      for (const auto &r : per_rank)
+        {
+          all.locations.insert(all.locations.end(),
+                               r.locations.begin(),
+                               r.locations.end());
+          all.forces.insert(all.forces.end(), r.forces.begin(), r.forces.end());
+        }
+      return all;
+    }
+
+    /**
      * The basal laws of the frictional walls on the nodal acceleration, in
      * each frictional node's frame (WallFriction), given the velocity at
      * the start of the step (already projected) and the step dt. Nodes
@@ -266,7 +305,11 @@ namespace MPM
      * within the step (the share of the skeleton's push the drag moved
      * to the water). At a 3D edge node each wall's friction takes its own
      * effective normal force: the phases' pushes split onto the two
-     * walls' normals (edge_pore_water_relief()).
+     * walls' normals (edge_pore_water_relief()). Where the law has a
+     * normal-stress memory (NormalStressMemory), the Coulomb part takes
+     * the remembered normal force N_m of the node instead of the present
+     * one (remembered_normal_relief(); at a 3D edge node, the present
+     * one).
      */
     /**
      * The pore water at the nodes, for friction in effective stress: its
@@ -402,6 +445,29 @@ namespace MPM
       stuck
     };
     std::vector<ContactState> contact_state;
+    /// The normal force N_m (N) each frictional node of a wall with a
+    /// normal-stress memory remembers; -1 where it remembers none (not
+    /// in contact).
+    std::vector<double> remembered_normal_force;
+    /// Exact order of mesh vertices, for the states kept by location.
+    static bool
+    location_less(const Point<dim> &a, const Point<dim> &b);
+    /**
+     * apply_friction()'s relief at the frictional node @p k (velocity @p v
+     * and acceleration @p a before the wall's resistance, @p held by the
+     * last update) that makes the Coulomb part take the remembered normal
+     * force N_m, updated here from the present effective normal force
+     * (r - @p relief) m: NormalStressMemory::relax(), or the present
+     * force at first contact.
+     */
+    double
+    remembered_normal_relief(const unsigned int    k,
+                             const Tensor<1, dim> &v,
+                             const Tensor<1, dim> &a,
+                             const NodalVector    &mass,
+                             const double          dt,
+                             const bool            held,
+                             const double          relief);
     /// Where the material touches the frictional walls.
     WallGap<dim> wall_gap;
     /// The loads of the boundaries of Type = traction.
