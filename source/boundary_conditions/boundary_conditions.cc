@@ -780,10 +780,11 @@ namespace MPM
 
   template <int dim>
   bool
-  BoundaryConditions<dim>::has_frictional_wall() const
+  BoundaryConditions<dim>::has_frictional_wall_without_memory() const
   {
     return std::any_of(specs.begin(), specs.end(), [](const auto &spec) {
-      return spec.type == BoundaryType::friction;
+      return spec.type == BoundaryType::friction &&
+             !spec.law->normal_stress_memory().active();
     });
   }
 

@@ -87,10 +87,11 @@ namespace MPM
       "an affine matrix C_w fitted to the water's nodal velocity (B D^-1 on "
       "CPDI weights, the gradient on linear ones) and hands the nodes "
       "v_w + C_w (x_i - x_p): the flume then depends little on the step "
-      "(0.126 / 0.133 m/s with steps of 8.6e-6 / 4.2e-6 s), but on CPDI "
-      "weights a saturated layer sliding on a Coulomb bed goes unstable "
-      "with steps of 0.3 and more of the undrained wave's CFL step (exact "
-      "at 0.25); doc/pore_water.md, 'A saturated flume: the time step'.");
+      "(0.126 / 0.133 m/s with steps of 8.6e-6 / 4.2e-6 s); on a Coulomb "
+      "bed it needs the wall's 'Normal stress memory length' (a saturated "
+      "layer sliding on one stops at CFL 0.3 and above without it, is "
+      "exact at CFL 0.5 with 1 mm: the friction's flutter, which PIC "
+      "damps); doc/pore_water.md, 'A saturated flume: the time step'.");
     prm.declare_entry(
       "Pressure rate averaging",
       "cell",

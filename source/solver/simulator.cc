@@ -53,20 +53,20 @@ namespace MPM
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
     pore_water.set_skeleton_transfer(transfer.apic() != nullptr);
-    if (pore_water.active() && boundary_conditions.has_frictional_wall() &&
+    if (pore_water.active() &&
+        boundary_conditions.has_frictional_wall_without_memory() &&
         (pore_water.affine_transfer() ||
          transfer.scheme().flip_fraction(1e-6) > 0))
-      pcout << "Warning: saturated materials on a frictional wall, their "
-               "water transferred with a FLIP share ('Transfer/Scheme = "
-               "flip/pic blend') or as APIC ('Pore water/Water velocity "
-               "transfer = affine'): with stiff drag these have a step "
-               "limit below CFL 0.5 (a saturated layer sliding on a "
-               "Coulomb bed: 31 % slow with the blend 0.98 at CFL 0.5, "
-               "exact at 0.1; stopped with the affine water at CFL 0.3 "
-               "and above, exact at 0.25; doc/pore_water.md, 'A saturated "
-               "flume: the time step'). The water by PIC ('Transfer/Scheme "
-               "= apic' with 'Water velocity transfer = transfer scheme', "
-               "the defaults) is exact there at CFL 0.5.\n";
+      pcout << "Warning: saturated materials on a frictional wall without "
+               "a 'Normal stress memory length', their water transferred "
+               "with a FLIP share ('Transfer/Scheme = flip/pic blend') or "
+               "as APIC ('Pore water/Water velocity transfer = affine'): "
+               "nothing damps the flutter of Coulomb friction, which pumps "
+               "the pore pressure (a saturated layer sliding on a Coulomb "
+               "bed: 31 % slow with the blend 0.98 at CFL 0.5, stopped with "
+               "the affine water at CFL 0.3 and above; exact at CFL 0.5 "
+               "with a memory of 1 mm; doc/boundary_conditions.md, "
+               "'Sliding on Coulomb friction: a flutter').\n";
     side_walls.initialize(nodal);
     if (!pore_water.active())
       for (const std::string &name : boundary_conditions.pore_pressure_boundaries())

@@ -422,9 +422,10 @@ namespace MPM
     bool
     does_work() const;
 
-    /// Whether a wall has 'Type = friction' (a basal law).
+    /// Whether a wall has 'Type = friction' (a basal law) without a
+    /// normal-stress memory (NormalStressMemory).
     bool
-    has_frictional_wall() const;
+    has_frictional_wall_without_memory() const;
 
   private:
     /// wall_area on the mesh of @p grid.
