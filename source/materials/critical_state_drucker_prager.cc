@@ -38,9 +38,9 @@ namespace MPM
      * with the friction angle atan(mu) and the dilation angle psi of the
      * state at the start of the step (explicit in the state), the tension
      * cap at zero mean stress (no cohesion): the return is
-     * DruckerPrager's. A contracting return that would end in tension
-     * ends at the apex, zero effective stress: a liquefied skeleton. The
-     * dilation slope is bounded so that the cone return's denominator G +
+     * DruckerPrager::return_to_cone(). A contracting return that would end in
+     * tension ends at the apex, zero effective stress: a liquefied skeleton.
+     * The dilation slope is bounded so that the cone return's denominator G +
      * K_b eta eta_bar stays above G / 2 (a strongly contracting, weak
      * packing).
      *
@@ -115,53 +115,30 @@ namespace MPM
       {
         AssertIndexRange(1, state.size());
         const double G = elasticity.shear_modulus;
-        // The strength of the packing at the start of the step.
+        // The cone of the packing at the start of the step: the
+        // plane-strain fit for the friction mu and the dilatancy tan psi,
+        // no cohesion, the cap at zero mean stress (the apex).
         const double tan_psi = dilatancy * (state[1] - critical_fraction);
-        const double mu      = std::max(0., critical_friction + tan_psi);
-        const double eta =
-          DruckerPrager::cone_coefficients(DruckerPrager::Fit::plane_strain,
-                                           std::atan(mu))
-            .first;
-        double eta_bar =
-          DruckerPrager::cone_coefficients(DruckerPrager::Fit::plane_strain,
-                                           std::atan(tan_psi))
-            .first;
-        if (eta > 0)
-          eta_bar = std::max(eta_bar, -0.5 * G / (bulk_modulus * eta));
+        DruckerPrager::Cone cone;
+        cone.eta = DruckerPrager::plane_strain_slope(
+          std::max(0., critical_friction + tan_psi));
+        cone.eta_bar = DruckerPrager::plane_strain_slope(tan_psi);
+        if (cone.eta > 0)
+          cone.eta_bar =
+            std::max(cone.eta_bar, -0.5 * G / (bulk_modulus * cone.eta));
+        cone.multiplier_factor =
+          1. / (G + bulk_modulus * cone.eta * cone.eta_bar);
 
-        SymmetricTensor<2, 3> trial = stress;
-        elasticity.add_stress_increment(strain_increment, trial);
+        elasticity.add_stress_increment(strain_increment, stress);
         // The packing follows the skeleton's volume.
         state[1] /= 1 + trace(strain_increment);
-
-        const double                mean = trace(trial) / 3;
-        const SymmetricTensor<2, 3> dev  = deviator(trial);
-        const double                root = std::sqrt(0.5 * (dev * dev));
-        const double                f    = root + eta * mean;
-        const double                tol  = 1e-12 * (std::abs(mean) + root);
-        if (f <= tol && mean <= tol)
-          {
-            stress = trial;
-            return;
-          }
-        double new_mean = 0, new_root = 0;
-        if (f > tol)
-          {
-            // The cone: per unit multiplier the return moves (sigma_m,
-            // sqrt(J2)) by (-K_b eta_bar, -G).
-            const double multiplier = f / (G + bulk_modulus * eta * eta_bar);
-            new_mean = mean - bulk_modulus * eta_bar * multiplier;
-            new_root = root - G * multiplier;
-          }
-        if (f <= tol || new_mean > 0)
-          {
-            // Past the apex (or only in tension): no effective stress.
-            new_mean = 0;
-            new_root = 0;
-          }
-        const double scale = root > 0 ? new_root / root : 0.;
-        stress = new_mean * unit_symmetric_tensor<3>() + scale * dev;
-        state[0] += (root - new_root) / (std::sqrt(3.) * G);
+        // A contracting return that would end in tension ends at the
+        // apex: no effective stress.
+        double root_decrease = 0;
+        if (DruckerPrager::return_to_cone(
+              cone, G, bulk_modulus, stress, root_decrease) !=
+            DruckerPrager::Return::elastic)
+          state[0] += root_decrease / (std::sqrt(3.) * G);
       }
 
       double

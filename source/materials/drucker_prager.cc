@@ -115,8 +115,8 @@ namespace MPM
       prepare_cone(given_strength);
 
       bulk_modulus = elasticity.lambda + 2. / 3. * elasticity.shear_modulus;
-      cone_multiplier_factor =
-        1. / (elasticity.shear_modulus + bulk_modulus * eta * eta_bar);
+      cone.multiplier_factor = 1. / (elasticity.shear_modulus +
+                                     bulk_modulus * cone.eta * cone.eta_bar);
       shear_strain_per_root_j2 =
         1. / (std::sqrt(3.) * elasticity.shear_modulus);
     }
@@ -125,15 +125,17 @@ namespace MPM
     void
     DruckerPrager::prepare_cone(const FrictionalStrength &strength)
     {
-      std::tie(eta, xi) = cone_coefficients(fit, strength.friction_angle);
-      eta_bar = cone_coefficients(fit, strength.dilation_angle).first;
-      xi_c    = xi * strength.cohesion;
+      std::tie(cone.eta, xi) = cone_coefficients(fit, strength.friction_angle);
+      cone.eta_bar = cone_coefficients(fit, strength.dilation_angle).first;
+      cone.xi_c    = xi * strength.cohesion;
 
       // xi c / eta is the apex as the return sees it (equal to c cot(phi)
       // up to rounding); clamping to it makes the edge radius below
       // non-negative and zero at the apex.
-      tension_cutoff = std::min(strength.tension_cutoff, xi_c / eta);
-      edge_root_j2   = std::max(0., xi_c - eta * tension_cutoff);
+      cone.tension_cutoff =
+        std::min(strength.tension_cutoff, cone.xi_c / cone.eta);
+      cone.edge_root_j2 =
+        std::max(0., cone.xi_c - cone.eta * cone.tension_cutoff);
     }
 
 
@@ -142,53 +144,8 @@ namespace MPM
     {
       Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
       prepare_cone(given_strength.reduced(factor));
-      cone_multiplier_factor =
-        1. / (elasticity.shear_modulus + bulk_modulus * eta * eta_bar);
-    }
-
-
-    inline DEAL_II_ALWAYS_INLINE DruckerPrager::Return
-    DruckerPrager::return_invariants_inline(double &mean_stress,
-                                            double &root_j2) const
-    {
-      const double mean = mean_stress;
-      const double root = root_j2;
-      const double f    = root + eta * mean - xi_c;
-      const double tol =
-        yield_relative_tolerance * (std::abs(mean) + root + xi_c);
-      if (f <= tol && mean <= tension_cutoff + tol)
-        return Return::elastic;
-
-      if (f > tol)
-        {
-          // The cone: the elastic return direction in (sigma_m, sqrt(J2))
-          // is (K eta_bar, G) per unit multiplier, and f is linear along
-          // it.
-          const double multiplier = f * cone_multiplier_factor;
-          const double new_mean =
-            mean - bulk_modulus * eta_bar * multiplier;
-          if (new_mean <= tension_cutoff)
-            {
-              mean_stress = new_mean;
-              // Non-negative but for rounding: new_mean <= T <= apex.
-              root_j2 = std::max(0.,
-                                 root - elasticity.shear_modulus * multiplier);
-              return Return::cone;
-            }
-        }
-
-      // The cone return would cross the cap (or only the cap is violated):
-      // the mean stress goes to T, the deviator stays if it fits under the
-      // cone there, else it shrinks to the edge (the apex for T = c
-      // cot(phi), where a hydrostatic trial stress counts as an apex
-      // return). Both multipliers of the edge are then non-negative: the
-      // cone's because root >= edge_root_j2, the cap's because the cone
-      // return alone would have ended above T.
-      mean_stress = tension_cutoff;
-      if (root < edge_root_j2)
-        return Return::tension_cap;
-      root_j2 = edge_root_j2;
-      return Return::cap_edge;
+      cone.multiplier_factor = 1. / (elasticity.shear_modulus +
+                                     bulk_modulus * cone.eta * cone.eta_bar);
     }
 
 
@@ -196,7 +153,8 @@ namespace MPM
     DruckerPrager::return_invariants(double &mean_stress,
                                      double &root_j2) const
     {
-      return return_invariants_inline(mean_stress, root_j2);
+      return return_invariants(
+        cone, elasticity.shear_modulus, bulk_modulus, mean_stress, root_j2);
     }
 
 
@@ -209,43 +167,17 @@ namespace MPM
       AssertIndexRange(0, state.size());
       // The same elastic predictor as LinearElastic, so that an elastic
       // step gives the same stress to the last bit.
-      SymmetricTensor<2, 3> trial = stress;
-      elasticity.add_stress_increment(strain_increment, trial);
-
-      // The invariants written out: deal.II's deviator() and
-      // second_invariant() build temporaries, and this is the whole cost
-      // of an elastic step.
-      const double mean = (trial[0][0] + trial[1][1] + trial[2][2]) * (1. / 3.);
-      const double d00  = trial[0][0] - mean;
-      const double d11  = trial[1][1] - mean;
-      const double d22  = trial[2][2] - mean;
-      const double j2   = 0.5 * (d00 * d00 + d11 * d11 + d22 * d22) +
-                        trial[0][1] * trial[0][1] + trial[0][2] * trial[0][2] +
-                        trial[1][2] * trial[1][2];
-      const double root = std::sqrt(j2);
-
-      double new_mean = mean, new_root = root;
-      if (return_invariants_inline(new_mean, new_root) == Return::elastic)
-        {
-          stress = trial;
-          return;
-        }
-
-      // The returned deviator is the trial one scaled (radial return in
-      // the deviatoric plane), so the stress stays coaxial with the trial
-      // stress. root = 0 only for a purely hydrostatic trial stress, whose
-      // deviator is zero anyway.
-      const double scale = root > 0 ? new_root / root : 0.;
-      stress[0][0]       = new_mean + scale * d00;
-      stress[1][1]       = new_mean + scale * d11;
-      stress[2][2]       = new_mean + scale * d22;
-      stress[0][1]       = scale * trial[0][1];
-      stress[0][2]       = scale * trial[0][2];
-      stress[1][2]       = scale * trial[1][2];
-
+      elasticity.add_stress_increment(strain_increment, stress);
+      double root_decrease = 0;
+      if (return_to_cone(cone,
+                         elasticity.shear_modulus,
+                         bulk_modulus,
+                         stress,
+                         root_decrease) == Return::elastic)
+        return;
       // The deviatoric plastic strain is the deviatoric stress change over
       // 2 G, of norm sqrt(2) (root - new_root) / (2 G).
-      state[0] += (root - new_root) * shear_strain_per_root_j2;
+      state[0] += root_decrease * shear_strain_per_root_j2;
     }
 
 
