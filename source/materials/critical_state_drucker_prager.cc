@@ -126,8 +126,7 @@ namespace MPM
         if (cone.eta > 0)
           cone.eta_bar =
             std::max(cone.eta_bar, -0.5 * G / (bulk_modulus * cone.eta));
-        cone.multiplier_factor =
-          1. / (G + bulk_modulus * cone.eta * cone.eta_bar);
+        cone.set_multiplier_factor(G, bulk_modulus);
 
         elasticity.add_stress_increment(strain_increment, stress);
         // The packing follows the skeleton's volume.

@@ -112,11 +112,8 @@ namespace MPM
       given_strength.dilation_angle = psi_degrees * degree;
       given_strength.cohesion       = cohesion;
       given_strength.tension_cutoff = given_tension_cutoff;
-      prepare_cone(given_strength);
-
       bulk_modulus = elasticity.lambda + 2. / 3. * elasticity.shear_modulus;
-      cone.multiplier_factor = 1. / (elasticity.shear_modulus +
-                                     bulk_modulus * cone.eta * cone.eta_bar);
+      prepare_cone(given_strength);
       shear_strain_per_root_j2 =
         1. / (std::sqrt(3.) * elasticity.shear_modulus);
     }
@@ -136,6 +133,7 @@ namespace MPM
         std::min(strength.tension_cutoff, cone.xi_c / cone.eta);
       cone.edge_root_j2 =
         std::max(0., cone.xi_c - cone.eta * cone.tension_cutoff);
+      cone.set_multiplier_factor(elasticity.shear_modulus, bulk_modulus);
     }
 
 
@@ -144,8 +142,6 @@ namespace MPM
     {
       Assert(factor > 0, ExcMessage("The strength reduction factor must be > 0."));
       prepare_cone(given_strength.reduced(factor));
-      cone.multiplier_factor = 1. / (elasticity.shear_modulus +
-                                     bulk_modulus * cone.eta * cone.eta_bar);
     }
 
 

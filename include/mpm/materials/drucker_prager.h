@@ -122,8 +122,15 @@ namespace MPM
         /// sqrt(J2) on the edge where cone and cap meet: xi c - eta T.
         double edge_root_j2 = 0;
         /// 1 / (G + K eta eta_bar): multiplier of a return to the cone per
-        /// unit of f_trial.
+        /// unit of f_trial (set_multiplier_factor()).
         double multiplier_factor = 0;
+
+        /// multiplier_factor for the shear and bulk moduli @p G and @p K.
+        void
+        set_multiplier_factor(const double G, const double K)
+        {
+          multiplier_factor = 1. / (G + K * eta * eta_bar);
+        }
       };
 
       /**
