@@ -275,19 +275,14 @@ namespace MPM
   {
     // The contact state is kept by location through a new setup (after
     // repartitioning, a node may now live on another rank).
-    const std::vector<ContactLocations> contact_before =
-      Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
-                                 contact_locations());
-    const std::vector<RememberedNormalForces> remembered_before =
-      Utilities::MPI::all_gather(grid.triangulation.get_communicator(),
-                                 remembered_normal_forces());
+    const WallNodeStates<dim> states_before =
+      WallNodeStates<dim>::gather(grid.triangulation.get_communicator(),
+                                  wall_node_states());
     const std::vector<NodeFrame<dim>> frames =
       compute_node_frames(grid, layout, specs, gravity_magnitude, periodic_nodes);
     make_wall_constraints(frames, grid.locally_relevant_dofs, normal_constraints);
     nodes = make_projections(frames, normal_constraints, layout);
-    contact_state.assign(nodes.size(), ContactState::free);
-    set_contact(merge(contact_before));
-    set_remembered_normal_forces(merge(remembered_before));
+    set_wall_node_states(states_before);
     wall_gap.setup(grid, specs, layout, nodes);
     tractions.setup(grid, specs, layout, periodic_nodes);
     pore_pressures.setup(grid, specs, layout, periodic_nodes);
@@ -471,91 +466,35 @@ namespace MPM
 
 
   template <int dim>
-  typename BoundaryConditions<dim>::ContactLocations
-  BoundaryConditions<dim>::contact_locations() const
+  WallNodeStates<dim>
+  BoundaryConditions<dim>::wall_node_states() const
   {
-    ContactLocations locations;
+    WallNodeStates<dim> states;
     for (unsigned int k = 0; k < nodes.size(); ++k)
-      if (contact_state[k] != ContactState::free)
-        locations[contact_state[k] == ContactState::stuck].push_back(
-          nodes[k].location);
-    return locations;
-  }
-
-
-  template <int dim>
-  bool
-  BoundaryConditions<dim>::location_less(const Point<dim> &a,
-                                         const Point<dim> &b)
-  {
-    // Exact comparison: the locations are vertices of the same mesh.
-    return std::lexicographical_compare(a.begin_raw(),
-                                        a.end_raw(),
-                                        b.begin_raw(),
-                                        b.end_raw());
+      {
+        const double N_m =
+          k < remembered_normal_force.size() ? remembered_normal_force[k] : -1.;
+        if (contact_state[k] != ContactState::free || N_m >= 0)
+          states.add(nodes[k].location, contact_state[k], N_m);
+      }
+    return states;
   }
 
 
   template <int dim>
   void
-  BoundaryConditions<dim>::set_contact(const ContactLocations &locations)
+  BoundaryConditions<dim>::set_wall_node_states(
+    const WallNodeStates<dim> &states)
   {
-    const auto less = &BoundaryConditions<dim>::location_less;
-    std::array<std::vector<Point<dim>>, 2> sorted = locations;
-    for (auto &list : sorted)
-      std::sort(list.begin(), list.end(), less);
-    const auto contains = [&](const unsigned int list, const Point<dim> &x) {
-      return std::binary_search(sorted[list].begin(), sorted[list].end(), x, less);
-    };
-    for (unsigned int k = 0; k < nodes.size(); ++k)
-      contact_state[k] =
-        !(nodes[k].frictional || nodes[k].edge_friction) ?
-                                         ContactState::free :
-        contains(1, nodes[k].location) ? ContactState::stuck :
-        contains(0, nodes[k].location) ? ContactState::sliding :
-                                         ContactState::free;
-  }
-
-
-  template <int dim>
-  typename BoundaryConditions<dim>::RememberedNormalForces
-  BoundaryConditions<dim>::remembered_normal_forces() const
-  {
-    RememberedNormalForces remembered;
-    for (unsigned int k = 0; k < nodes.size(); ++k)
-      if (k < remembered_normal_force.size() && remembered_normal_force[k] >= 0)
-        {
-          remembered.locations.push_back(nodes[k].location);
-          remembered.forces.push_back(remembered_normal_force[k]);
-        }
-    return remembered;
-  }
-
-
-  template <int dim>
-  void
-  BoundaryConditions<dim>::set_remembered_normal_forces(
-    const RememberedNormalForces &remembered)
-  {
+    contact_state.assign(nodes.size(), ContactState::free);
     remembered_normal_force.assign(nodes.size(), -1.);
-    std::vector<unsigned int> order(remembered.locations.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](const auto i, const auto j) {
-      return location_less(remembered.locations[i], remembered.locations[j]);
-    });
     for (unsigned int k = 0; k < nodes.size(); ++k)
-      if (nodes[k].frictional)
+      if (nodes[k].frictional || nodes[k].edge_friction)
         {
-          const auto it =
-            std::lower_bound(order.begin(),
-                             order.end(),
-                             nodes[k].location,
-                             [&](const unsigned int i, const Point<dim> &x) {
-                               return location_less(remembered.locations[i], x);
-                             });
-          if (it != order.end() &&
-              !location_less(nodes[k].location, remembered.locations[*it]))
-            remembered_normal_force[k] = remembered.forces[*it];
+          const auto state = states.find(nodes[k].location);
+          contact_state[k] = state.contact;
+          if (nodes[k].frictional)
+            remembered_normal_force[k] = state.remembered_normal_force;
         }
   }
 

@@ -64,13 +64,11 @@ namespace MPM
         postprocessor_states.push_back(out.str());
       }
 
-    const auto contact = BoundaryConditions<dim>::merge(
-      Utilities::MPI::all_gather(mpi_communicator,
-                                 boundary_conditions.contact_locations()));
-
-    const auto remembered =
-      BoundaryConditions<dim>::merge(Utilities::MPI::all_gather(
-        mpi_communicator, boundary_conditions.remembered_normal_forces()));
+    const auto wall_states =
+      WallNodeStates<dim>::gather(mpi_communicator,
+                                  boundary_conditions.wall_node_states());
+    const auto contact    = wall_states.contact_lists();
+    const auto remembered = wall_states.remembered_lists();
 
     std::ostringstream state;
     {
@@ -81,7 +79,7 @@ namespace MPM
          << postprocessor_names << postprocessor_states << removed.energy
          << contact[0] << contact[1] << max_state_wave_speed
          << wrapped_shift_values << rest_criterion << stability_monitor
-         << remembered.locations << remembered.forces;
+         << remembered.first << remembered.second;
     }
     return state.str();
   }
@@ -120,7 +118,7 @@ namespace MPM
       output_writer >> names >> postprocessor_states;
     if (format >= 2)
       ar >> removed_energy;
-    typename BoundaryConditions<dim>::ContactLocations contact;
+    std::array<std::vector<Point<dim>>, 2> contact;
     if (format >= 3)
       ar >> contact[0] >> contact[1];
     // Older checkpoints: the value the set-up computed from the points.
@@ -135,11 +133,12 @@ namespace MPM
     if (format >= 7)
       ar >> stability_monitor;
     // Older checkpoints: no memory (N* = N at the next contact).
-    typename BoundaryConditions<dim>::RememberedNormalForces remembered;
+    std::vector<Point<dim>> remembered_locations;
+    std::vector<double>     remembered_forces;
     if (format >= 8)
-      ar >> remembered.locations >> remembered.forces;
-    boundary_conditions.set_contact(contact);
-    boundary_conditions.set_remembered_normal_forces(remembered);
+      ar >> remembered_locations >> remembered_forces;
+    boundary_conditions.set_wall_node_states(WallNodeStates<dim>::from_lists(
+      contact, remembered_locations, remembered_forces));
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
                            "postprocessors '" +

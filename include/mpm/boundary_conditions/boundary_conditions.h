@@ -6,11 +6,12 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
-#include <mpm/boundary_conditions/boundary_spec.h>
 #include <mpm/boundary_conditions/boundary_pore_pressures.h>
+#include <mpm/boundary_conditions/boundary_spec.h>
 #include <mpm/boundary_conditions/surface_tractions.h>
 #include <mpm/boundary_conditions/wall_constraints.h>
 #include <mpm/boundary_conditions/wall_gap.h>
+#include <mpm/boundary_conditions/wall_node_states.h>
 #include <mpm/grid/background_grid.h>
 #include <mpm/grid/nodal_vector.h>
 
@@ -215,75 +216,18 @@ namespace MPM
     constrain_updated_velocity(NodalVector &velocity);
 
     /**
-     * Where the last nodal update held frictional nodes on their walls:
-     * [0] the nodes that slid, [1] those that stuck.
+     * The frictional nodes' contact state and remembered normal forces of
+     * this rank's nodes (owned and ghost), by location, and setting them
+     * from such states (of any ranks; nodes not named are free and
+     * remember nothing). Kept through a new setup() and written to
+     * checkpoints, so that a resumed or repartitioned run continues bit
+     * for bit.
      */
-    using ContactLocations = std::array<std::vector<Point<dim>>, 2>;
-
-    /**
-     * The contact state of this rank's nodes (owned and ghost) by location,
-     * and setting it from such lists (of any ranks; nodes not listed are
-     * free). The state is kept through a new setup() (repartitioning moves
-     * nodes between ranks) and written to checkpoints, so that a resumed
-     * run continues bit for bit.
-     */
-    ContactLocations
-    contact_locations() const;
+    WallNodeStates<dim>
+    wall_node_states() const;
 
     void
-    set_contact(const ContactLocations &locations);
-
-    /**
-     * The lists of several ranks as one.
-     */
-    static ContactLocations
-    merge(const std::vector<ContactLocations> &per_rank)
-    {
-      ContactLocations all;
-      for (const auto &lists : per_rank)
-        for (unsigned int i = 0; i < 2; ++i)
-          all[i].insert(all[i].end(), lists[i].begin(), lists[i].end());
-      return all;
-    }
-
-    /**
-     * The normal forces N_m remembered by the frictional nodes of walls
-     * with a normal-stress memory (NormalStressMemory), by location: kept
-     * like the contact state through setup() and in checkpoints.
-     */
-    struct RememberedNormalForces
-    {
-      std::vector<Point<dim>> locations;
-      std::vector<double>     forces;
-
-      template <class Archive>
-      void
-      serialize(Archive &ar, const unsigned int)
-      {
-        ar &locations &forces;
-      }
-    };
-
-    RememberedNormalForces
-    remembered_normal_forces() const;
-
-    void
-    set_remembered_normal_forces(const RememberedNormalForces &remembered);
-
-    /// The lists of several ranks as one.
-    static RememberedNormalForces
-    merge(const std::vector<RememberedNormalForces> &per_rank)
-    {
-      RememberedNormalForces all;
-      for (const auto &r : per_rank)
-        {
-          all.locations.insert(all.locations.end(),
-                               r.locations.begin(),
-                               r.locations.end());
-          all.forces.insert(all.forces.end(), r.forces.begin(), r.forces.end());
-        }
-      return all;
-    }
+    set_wall_node_states(const WallNodeStates<dim> &states);
 
     /**
      * The basal laws of the frictional walls on the nodal acceleration, in
@@ -439,20 +383,12 @@ namespace MPM
     AffineConstraints<double>    normal_constraints;
     std::vector<ConstrainedNode> nodes;
     /// What the last nodal update did to each frictional node.
-    enum class ContactState : unsigned char
-    {
-      free,
-      sliding,
-      stuck
-    };
+    using ContactState = typename WallNodeStates<dim>::Contact;
     std::vector<ContactState> contact_state;
     /// The normal force N_m (N) each frictional node of a wall with a
     /// normal-stress memory remembers; -1 where it remembers none (not
     /// in contact).
     std::vector<double> remembered_normal_force;
-    /// Exact order of mesh vertices, for the states kept by location.
-    static bool
-    location_less(const Point<dim> &a, const Point<dim> &b);
     /**
      * apply_friction()'s relief at the frictional node @p k (velocity @p v
      * and acceleration @p a before the wall's resistance, @p held by the
