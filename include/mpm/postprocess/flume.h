@@ -97,6 +97,8 @@ namespace MPM
       double theta = 0, radius = 0.1, bin_width = 0.01, stop_speed = 0.01,
              front_tolerance = 0.001;
       Point<2> break_point;
+      /// 'Runout volume fractions'.
+      std::vector<double> volume_fractions;
 
       double              peak_speed = 0, peak_time = 0;
       double              last_time_above_stop = -1, first_time_after = -1;
