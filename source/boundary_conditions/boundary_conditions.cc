@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 
 namespace MPM
 {
@@ -541,21 +542,29 @@ namespace MPM
         // force in it fed back into the friction and grew from round-off
         // into a normal oscillation of the layer (a sliding layer on a
         // drained bed, after 0.18 s).
-        double relief = 0;
+        // The normal reaction per unit mass the Coulomb part takes where
+        // it is not the wall's whole push.
+        std::optional<double> effective_reaction;
         if (water != nullptr && node.frictional)
           {
             const NodeWater       w = node_water(node, *water);
             const Tensor<1, dim> &n = node.normal;
-            relief = pore_water_relief(water_drains_along(k, n),
-                                       w.m_w * (w.v_w * n) / dt + w.F_w * n,
-                                       w.m_w * (w.v_w_new * n) / dt,
-                                       w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
-                                         w.F_w * n,
-                                       w.n_i,
-                                       mass.local_element(node.local_dofs[0]));
+            const double          relief =
+              pore_water_relief(water_drains_along(k, n),
+                                w.m_w * (w.v_w * n) / dt + w.F_w * n,
+                                w.m_w * (w.v_w_new * n) / dt,
+                                w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
+                                  w.F_w * n,
+                                w.n_i,
+                                mass.local_element(node.local_dofs[0]));
+            effective_reaction =
+              std::max(WallFriction::normal_reaction(v, a, node.normal, dt) -
+                         relief,
+                       0.);
           }
         if (node.frictional && node.law->normal_stress_memory().active())
-          relief = remembered_normal_relief(k, v, a, mass, dt, held, relief);
+          effective_reaction = remembered_normal_reaction(
+            k, v, a, mass, dt, held, effective_reaction);
         std::array<double, 2> edge_relief{{0., 0.}};
         if (water != nullptr && node.edge_friction)
           edge_relief = edge_pore_water_relief(k, *water, mass, dt);
@@ -568,7 +577,7 @@ namespace MPM
                                                     dt,
                                                     &sticks,
                                                     held,
-                                                    relief) :
+                                                    effective_reaction) :
               WallFriction::edge_frictional_acceleration(v,
                                                          a,
                                                          node.edge_normals,
@@ -586,35 +595,37 @@ namespace MPM
 
 
   template <int dim>
-  double
-  BoundaryConditions<dim>::remembered_normal_relief(const unsigned int    k,
-                                                    const Tensor<1, dim> &v,
-                                                    const Tensor<1, dim> &a,
-                                                    const NodalVector    &mass,
-                                                    const double          dt,
-                                                    const bool            held,
-                                                    const double relief)
+  std::optional<double>
+  BoundaryConditions<dim>::remembered_normal_reaction(
+    const unsigned int           k,
+    const Tensor<1, dim>        &v,
+    const Tensor<1, dim>        &a,
+    const NodalVector           &mass,
+    const double                 dt,
+    const bool                   held,
+    const std::optional<double> &effective_reaction)
   {
-    // The normal force the Coulomb part would take now, N = (r - relief)
-    // m with r the reaction per unit mass, against the remembered N_m.
-    const auto           &node     = nodes[k];
-    const Tensor<1, dim> &n        = node.normal;
-    const double          reaction = (v * n) / dt + a * n;
-    double               &N_m      = remembered_normal_force[k];
+    const auto  &node = nodes[k];
+    const double reaction =
+      WallFriction::normal_reaction(v, a, node.normal, dt);
+    double &N_m = remembered_normal_force[k];
     if (reaction <= 0)
       {
         // Not pushing: the wall forgets the node's normal force.
         N_m = -1;
-        return relief;
+        return effective_reaction;
       }
+    // The normal force the Coulomb part would take now, against the
+    // remembered N_m.
     const double m   = mass.local_element(node.local_dofs[0]);
-    const double now = std::max(reaction - relief, 0.) * m;
-    N_m = held && N_m >= 0 ? node.law->normal_stress_memory().relax(
-                               N_m, now, (v - (v * n) * n).norm(), dt) :
-                             now;
-    // frictional_acceleration() takes max(r - relief, 0): N_m / m.
-    return reaction - N_m / m;
+    const double now = effective_reaction.value_or(reaction) * m;
+    N_m              = held && N_m >= 0 ?
+                         node.law->normal_stress_memory().relax(
+              N_m, now, (v - (v * node.normal) * node.normal).norm(), dt) :
+                         now;
+    return N_m / m;
   }
+
 
 
   template <int dim>

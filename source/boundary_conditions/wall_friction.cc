@@ -8,15 +8,15 @@ namespace MPM
   {
     template <int dim>
     Tensor<1, dim>
-    frictional_acceleration(const Tensor<1, dim>   &v,
-                            const Tensor<1, dim>   &a,
-                            const Tensor<1, dim>   &n,
-                            const BasalLaw<dim>    &law,
-                            const WallNodeGeometry &geometry,
-                            const double            dt,
-                            bool *const             sticks,
-                            const bool              held,
-                            const double            relief)
+    frictional_acceleration(const Tensor<1, dim>        &v,
+                            const Tensor<1, dim>        &a,
+                            const Tensor<1, dim>        &n,
+                            const BasalLaw<dim>         &law,
+                            const WallNodeGeometry      &geometry,
+                            const double                 dt,
+                            bool *const                  sticks,
+                            const bool                   held,
+                            const std::optional<double> &effective_reaction)
     {
       if (sticks != nullptr)
         *sticks = false;
@@ -53,9 +53,10 @@ namespace MPM
       const Tensor<1, dim> v_t_trial = v_t + dt * (a - a_n * n);
       const double         speed     = v_t_trial.norm();
       // The rate-independent resistance takes the effective normal
-      // reaction: the wall's push less what the pore water carries.
+      // reaction where the caller gives one (the wall's push less what the
+      // pore water carries; a remembered normal force).
       const double capacity =
-        law.static_capacity(std::max(reaction - relief, 0.), dt);
+        law.static_capacity(effective_reaction.value_or(reaction), dt);
       Tensor<1, dim>       v_t_new =
         speed <= capacity ? Tensor<1, dim>() :
                             (1. - capacity / speed) * v_t_trial;
@@ -144,7 +145,7 @@ namespace MPM
                             const double,
                             bool *const,
                             const bool,
-                            const double);
+                            const std::optional<double> &);
     template Tensor<1, 3>
     frictional_acceleration(const Tensor<1, 3> &,
                             const Tensor<1, 3> &,
@@ -154,7 +155,7 @@ namespace MPM
                             const double,
                             bool *const,
                             const bool,
-                            const double);
+                            const std::optional<double> &);
     template Tensor<1, 2>
     edge_frictional_acceleration(const Tensor<1, 2> &,
                                  const Tensor<1, 2> &,

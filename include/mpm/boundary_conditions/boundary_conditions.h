@@ -16,6 +16,7 @@
 #include <mpm/grid/nodal_vector.h>
 
 #include <array>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -252,7 +253,7 @@ namespace MPM
      * walls' normals (edge_pore_water_relief()). Where the law has a
      * normal-stress memory (NormalStressMemory), the Coulomb part takes
      * the remembered normal force N_m of the node instead of the present
-     * one (remembered_normal_relief(); at a 3D edge node, the present
+     * one (remembered_normal_reaction(); at a 3D edge node, the present
      * one).
      */
     /**
@@ -390,21 +391,23 @@ namespace MPM
     /// in contact).
     std::vector<double> remembered_normal_force;
     /**
-     * apply_friction()'s relief at the frictional node @p k (velocity @p v
-     * and acceleration @p a before the wall's resistance, @p held by the
-     * last update) that makes the Coulomb part take the remembered normal
-     * force N_m, updated here from the present effective normal force
-     * (r - @p relief) m: NormalStressMemory::relax(), or the present
-     * force at first contact.
+     * The normal reaction per unit mass that the Coulomb part of the
+     * frictional node @p k takes (velocity @p v and acceleration @p a
+     * before the wall's resistance, @p held by the last update): the
+     * remembered normal force N_m over the node's mass, N_m updated here
+     * from the present normal force, @p effective_reaction (or the
+     * wall's whole push) times the mass: NormalStressMemory::relax(), or
+     * the present force at first contact. Where the node does not push on
+     * its wall, N_m is forgotten and @p effective_reaction returned.
      */
-    double
-    remembered_normal_relief(const unsigned int    k,
-                             const Tensor<1, dim> &v,
-                             const Tensor<1, dim> &a,
-                             const NodalVector    &mass,
-                             const double          dt,
-                             const bool            held,
-                             const double          relief);
+    std::optional<double>
+    remembered_normal_reaction(const unsigned int           k,
+                               const Tensor<1, dim>        &v,
+                               const Tensor<1, dim>        &a,
+                               const NodalVector           &mass,
+                               const double                 dt,
+                               const bool                   held,
+                               const std::optional<double> &effective_reaction);
     /// Where the material touches the frictional walls.
     WallGap<dim> wall_gap;
     /// The loads of the boundaries of Type = traction.

@@ -6,6 +6,7 @@
 #include <mpm/boundary_conditions/basal_law.h>
 
 #include <array>
+#include <optional>
 
 namespace MPM
 {
@@ -43,21 +44,41 @@ namespace MPM
      * impulse). Coulomb's part is not affected: the normal impulse a
      * flicker misses is taken up by the next steps' reactions.
      *
-     * With pore water, @p relief (per unit mass) is what r holds beyond
-     * the effective normal stress (BoundaryConditions::apply_friction()):
-     * the rate-independent resistance takes max(r - relief, 0).
+     * The rate-independent resistance takes r itself unless the caller
+     * gives the normal reaction per unit mass it takes instead,
+     * @p effective_reaction (BoundaryConditions::apply_friction(): with
+     * pore water r less what the water carries, with a normal-stress
+     * memory the remembered normal force over the node's mass); it acts
+     * only where r > 0.
      */
     template <int dim>
     Tensor<1, dim>
-    frictional_acceleration(const Tensor<1, dim>   &v,
-                            const Tensor<1, dim>   &a,
-                            const Tensor<1, dim>   &n,
-                            const BasalLaw<dim>    &law,
-                            const WallNodeGeometry &geometry,
-                            const double            dt,
-                            bool *const             sticks = nullptr,
-                            const bool              held   = false,
-                            const double            relief = 0);
+    frictional_acceleration(
+      const Tensor<1, dim>        &v,
+      const Tensor<1, dim>        &a,
+      const Tensor<1, dim>        &n,
+      const BasalLaw<dim>         &law,
+      const WallNodeGeometry      &geometry,
+      const double                 dt,
+      bool *const                  sticks             = nullptr,
+      const bool                   held               = false,
+      const std::optional<double> &effective_reaction = std::nullopt);
+
+    /**
+     * The normal reaction per unit mass r = v.n / dt + a.n that a wall of
+     * outward normal @p n must give a node of velocity @p v and
+     * acceleration @p a for its normal velocity to be zero after the step
+     * @p dt.
+     */
+    template <int dim>
+    inline double
+    normal_reaction(const Tensor<1, dim> &v,
+                    const Tensor<1, dim> &a,
+                    const Tensor<1, dim> &n,
+                    const double          dt)
+    {
+      return (v * n) / dt + a * n;
+    }
 
     /**
      * The same at a 3D edge node (two walls, one free direction): the
