@@ -4,6 +4,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/column_collapse.h>
+#include <mpm/postprocess/volume_quantiles.h>
 #include <mpm/solver/simulator.h>
 
 #include <algorithm>
@@ -64,10 +65,8 @@ namespace MPM
         "this (m), interpolated between bins. The front point (the first "
         "runout) is a single point's edge and moves with the resolution; "
         "this one measures the deposit (doc/column_collapse.md).");
-      prm.declare_entry(
-        "Runout volume fractions",
-        "0.95, 0.99",
-        Patterns::List(Patterns::Double(0, 1)),
+      declare_volume_fractions(
+        prm,
         "The report also gives, for each fraction q here, the runout within "
         "which the share q of the final point volume lies (from the wall "
         "outwards, interpolated in the bin where the sum crosses q). A "
@@ -107,10 +106,7 @@ namespace MPM
       stop_speed     = prm.get_double("Stop speed");
       bin_width       = prm.get_double("Deposit bin width");
       front_thickness = prm.get_double("Front thickness");
-      volume_fractions.clear();
-      for (const auto &q : Utilities::split_string_list(
-             prm.get("Runout volume fractions")))
-        volume_fractions.push_back(Utilities::string_to_double(q));
+      volume_fractions = parse_volume_fractions(prm);
     }
 
 
@@ -283,20 +279,14 @@ namespace MPM
              << (first_empty * bin_width - width) / width << '\n';
       // Volume quantiles, in the unit of thickness (divided by the channel
       // width above).
-      const double total = volume / channel_width;
+      const double        total = volume / channel_width;
+      std::vector<double> volume_in_bin(n_bins);
+      for (long b = 0; b < n_bins; ++b)
+        volume_in_bin[b] = thickness[b] * bin_width;
       for (const double q : volume_fractions)
         {
-          double below = 0, x_q = n_bins * bin_width;
-          for (long b = 0; b < n_bins; ++b)
-            {
-              const double in_bin = thickness[b] * bin_width;
-              if (in_bin > 0 && below + in_bin >= q * total)
-                {
-                  x_q = (b + (q * total - below) / in_bin) * bin_width;
-                  break;
-                }
-              below += in_bin;
-            }
+          const double x_q =
+            volume_quantile_in_bins(volume_in_bin, total, q) * bin_width;
           report << "runout holding " << 100 * q
                  << " % of the point volume, (L - L0)/L0: "
                  << (x_q - width) / width << '\n';

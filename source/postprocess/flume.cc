@@ -4,6 +4,7 @@
 #include <mpm/base/input_error.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/postprocess/flume.h>
+#include <mpm/postprocess/volume_quantiles.h>
 #include <mpm/solver/simulator.h>
 
 #include <algorithm>
@@ -50,10 +51,8 @@ namespace MPM
                         "The front counts as at rest from the output time "
                         "after which it stays within this distance (m) of "
                         "its final position.");
-      prm.declare_entry(
-        "Runout volume fractions",
-        "0.95, 0.99",
-        Patterns::List(Patterns::Double(0, 1)),
+      declare_volume_fractions(
+        prm,
         "The report also gives, for each fraction q here, the distance s "
         "along the bed within which the fraction q of the final deposit's "
         "point volume lies, counted from its tail (interpolated in the bins "
@@ -72,10 +71,7 @@ namespace MPM
       bin_width       = prm.get_double("Bin width");
       stop_speed      = prm.get_double("Stop speed");
       front_tolerance = prm.get_double("Front tolerance");
-      volume_fractions.clear();
-      for (const auto &q :
-           Utilities::split_string_list(prm.get("Runout volume fractions")))
-        volume_fractions.push_back(Utilities::string_to_double(q));
+      volume_fractions = parse_volume_fractions(prm);
       break_point = parse_point<2>(prm.get("Break in slope"),
                                    "Postprocess/flume/Break in slope");
     }
@@ -316,21 +312,18 @@ namespace MPM
                << heights[thickest] << " m) at s = " << s
                << " m, x = " << bed_point(s)[0] << " m\n";
       }
-      double total = 0;
+      std::vector<double> volume_in_bin(n_bins);
+      double              total = 0;
       for (long b = 0; b < n_bins; ++b)
-        total += sums[2 * b];
+        {
+          volume_in_bin[b] = sums[2 * b];
+          total += sums[2 * b];
+        }
       for (const double q : volume_fractions)
         {
-          double below = 0, s_q = (first_bin + n_bins) * bin_width;
-          for (long b = 0; b < n_bins; ++b)
-            if (sums[2 * b] > 0 && below + sums[2 * b] >= q * total)
-              {
-                s_q = (first_bin + b + (q * total - below) / sums[2 * b]) *
-                      bin_width;
-                break;
-              }
-            else
-              below += sums[2 * b];
+          const double s_q =
+            volume_quantile_in_bins(volume_in_bin, total, q, first_bin) *
+            bin_width;
           report << "deposit holding " << 100 * q
                  << " % of the point volume from its tail, s: " << s_q
                  << " m (x = " << bed_point(s_q)[0] << " m)\n";
