@@ -471,13 +471,13 @@ namespace MPM
   BoundaryConditions<dim>::wall_node_states() const
   {
     WallNodeStates<dim> states;
+    // set_wall_node_states() sizes both per-node vectors with the nodes.
     for (unsigned int k = 0; k < nodes.size(); ++k)
-      {
-        const double N_m =
-          k < remembered_normal_force.size() ? remembered_normal_force[k] : -1.;
-        if (contact_state[k] != ContactState::free || N_m >= 0)
-          states.add(nodes[k].location, contact_state[k], N_m);
-      }
+      if (contact_state[k] != ContactState::free ||
+          remembered_normal_force[k] >= 0)
+        states.add(nodes[k].location,
+                   contact_state[k],
+                   remembered_normal_force[k]);
     return states;
   }
 

@@ -153,6 +153,9 @@ namespace MPM
     serialize(Archive &ar, const unsigned int)
     {
       ar &records;
+      // Records read back keep the order they were written in.
+      if constexpr (Archive::is_loading::value)
+        sorted = false;
     }
 
   private:
