@@ -89,19 +89,7 @@ namespace MPM
     time_stepping.parse_parameters(prm);
     transfer.parse_parameters(prm);
     transfer.scheme().add_nodal_fields(nodal);
-    weights = ParticleGridWeights<dim>::create(
-      prm,
-      TransferContext<dim>{particle_handler,
-                           grid,
-                           nodal,
-                           transfer,
-                           point_update,
-                           time_stepping,
-                           step,
-                           time_step,
-                           cell_dofs,
-                           periodic_nodes,
-                           timer});
+    weights = ParticleGridWeights<dim>::create(prm, *this);
     if (transfer.apic() != nullptr &&
         !time_stepping.step_scheme->updates_stress_from_remap() &&
         !weights->second_moment_bounded_below())

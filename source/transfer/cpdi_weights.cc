@@ -134,9 +134,9 @@ namespace MPM
 
 
   template <int dim>
-  CpdiWeights<dim>::CpdiWeights(const TransferContext<dim> &context,
-                                ParameterHandler           &prm)
-    : ParticleGridPasses<dim, CpdiWeights<dim>>(context)
+  CpdiWeights<dim>::CpdiWeights(Simulator<dim>   &simulator,
+                                ParameterHandler &prm)
+      : ParticleGridPasses<dim, CpdiWeights<dim>>(simulator)
   {
     point_domains.parse_parameters(prm);
   }
@@ -147,8 +147,8 @@ namespace MPM
   CpdiWeights<dim>::setup_partition()
   {
     ParticleGridPasses<dim, CpdiWeights<dim>>::setup_partition();
-    const auto &triangulation = this->context.grid.triangulation;
-    const bool  periodic = !this->context.grid.periodic_boundaries.empty();
+    const auto &triangulation = this->get_grid().triangulation;
+    const bool  periodic      = !this->get_grid().periodic_boundaries.empty();
     // With periodic boundaries, each vertex's periodic copies and the
     // shift from it to each: from the pairs of periodic faces (matched
     // vertex by vertex, the faces' centres differing by the shift), then
@@ -234,7 +234,7 @@ namespace MPM
       if (cell->is_locally_owned())
         cell_stretch2[cell->active_cell_index()] =
           PointDomains<dim>::cell_stretch2(
-            this->context.grid.cell_vertices(cell->active_cell_index()));
+            this->get_grid().cell_vertices(cell->active_cell_index()));
     // The hints name cells of these patches by position and index.
     corner_hints.clear();
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -274,7 +274,7 @@ namespace MPM
 
           // Where the patch's cells lie relative to this one, if its map is
           // affine (cell_patch_directions).
-          const auto &grid = this->context.grid;
+          const auto &grid = this->get_grid();
           bool        affine;
           if constexpr (dim == 2)
             affine = grid.bilinear_map(index).is_parallelogram();
@@ -477,23 +477,23 @@ namespace MPM
   template <int dim>
   CpdiWeights<dim>::PatchSearch::PatchSearch(const CpdiWeights<dim> &weights,
                                              const CellIterator     &cell)
-    : use_hints(dim == 2 ?
-                  !weights.context.grid.bilinear_map(cell).is_parallelogram() :
-                  !weights.context.grid
-                     .parallelepiped_map(cell->active_cell_index())
-                     .is_affine())
-    , grid(weights.context.grid)
-    , cell(cell)
-    , patch(weights.cell_patches[cell->active_cell_index()])
-    , image_shifts(weights.image_shifts)
-    , image_of(weights.cell_patch_images.empty() ?
-                 nullptr :
-                 weights.cell_patch_images[cell->active_cell_index()].data())
-    , directions(weights.cell_patch_directions[cell->active_cell_index()])
-    , regular_patch(!directions.empty() &&
-                    std::find(directions.begin(),
-                              directions.end(),
-                              mixed_direction) == directions.end())
+      : use_hints(dim == 2 ?
+                    !weights.get_grid().bilinear_map(cell).is_parallelogram() :
+                    !weights.get_grid()
+                       .parallelepiped_map(cell->active_cell_index())
+                       .is_affine())
+      , grid(weights.get_grid())
+      , cell(cell)
+      , patch(weights.cell_patches[cell->active_cell_index()])
+      , image_shifts(weights.image_shifts)
+      , image_of(weights.cell_patch_images.empty() ?
+                   nullptr :
+                   weights.cell_patch_images[cell->active_cell_index()].data())
+      , directions(weights.cell_patch_directions[cell->active_cell_index()])
+      , regular_patch(!directions.empty() &&
+                      std::find(directions.begin(),
+                                directions.end(),
+                                mixed_direction) == directions.end())
   {
     last_found.fill(0);
   }
@@ -710,7 +710,7 @@ namespace MPM
   void
   CpdiWeights<dim>::collect_point_cells()
   {
-    auto &particle_handler = this->context.particle_handler;
+    auto &particle_handler = this->get_particle_handler();
     this->point_cell_begin.clear();
     this->point_cell_size.clear();
     point_cells.clear();
@@ -721,7 +721,7 @@ namespace MPM
         const CellIterator cell   = it->get_surrounding_cell();
         const auto         points = particle_handler.particles_in_cell(cell);
         this->point_cell_begin.push_back(n_counted);
-        this->point_cell_size.push_back(this->context.grid.cell_size(cell));
+        this->point_cell_size.push_back(this->get_grid().cell_size(cell));
         point_cells.push_back(cell);
         this->point_cell_first_point.push_back(points.begin());
         n_counted += static_cast<unsigned int>(
@@ -740,9 +740,11 @@ namespace MPM
   {
     constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
     using Layout                     = PropertyLayout<dim>;
-    const auto        &grid          = this->context.grid;
+    const auto         &grid          = this->get_grid();
     const unsigned int domain_slot   = this->own_slot;
     const CellIterator &cell         = point_cells[pc];
+    // Every 8th step a shrunk domain tries to grow back (below).
+    const bool                    try_growing = this->get_step() % 8 == 0;
     PatchSearch         search(*this, cell);
     typename PatchSearch::Corners corners;
     auto point = this->point_cell_first_point[pc];
@@ -787,8 +789,7 @@ namespace MPM
         // a point resting against a wall pays for one try most steps, not
         // a bisection.
         double &scale = props[domain_slot + PointDomains<dim>::scale_slot];
-        const double grown =
-          this->context.step % 8 == 0 ? std::min(1., 2 * scale) : scale;
+        const double grown = try_growing ? std::min(1., 2 * scale) : scale;
         if (locate(grown))
           scale = grown;
         else if (!(scale < grown && locate(scale)))
@@ -861,10 +862,10 @@ namespace MPM
   double
   CpdiWeights<dim>::prepare()
   {
-    auto       &particle_handler = this->context.particle_handler;
-    const auto &grid             = this->context.grid;
+    auto                  &particle_handler = this->get_particle_handler();
+    const auto            &grid             = this->get_grid();
     auto       &shape_functions  = this->shape_functions;
-    TimerOutput::Scope     t(this->context.timer, "shape functions");
+    TimerOutput::Scope     t(this->get_timer(), "shape functions");
     constexpr unsigned int n_corners = PointDomains<dim>::n_corners;
     const unsigned int n_points =
       particle_handler.n_locally_owned_particles();
@@ -1000,8 +1001,10 @@ namespace MPM
   {
     // The domain deforms with the point: D_c <- (I + dt grad v) D_c.
     const auto D = PointDomains<dim>::read(props + this->own_slot);
-    auto       deformed = point_domains.deformed_domain(
-      D, this->context.time_step * grad_v, point_cell_stretch2[p]);
+    auto       deformed =
+      point_domains.deformed_domain(D,
+                                    this->get_time_step() * grad_v,
+                                    point_cell_stretch2[p]);
     // Its area (volume) stays the point's.
     if (volume_factor != 1.)
       {

@@ -12,9 +12,9 @@
 namespace MPM
 {
   template <int dim>
-  LinearWeights<dim>::LinearWeights(const TransferContext<dim> &context,
+  LinearWeights<dim>::LinearWeights(Simulator<dim> &simulator,
                                     ParameterHandler &)
-    : ParticleGridPasses<dim, LinearWeights<dim>>(context)
+      : ParticleGridPasses<dim, LinearWeights<dim>>(simulator)
   {}
 
 
@@ -22,8 +22,8 @@ namespace MPM
   double
   LinearWeights<dim>::prepare()
   {
-    auto &particle_handler = this->context.particle_handler;
-    TimerOutput::Scope t(this->context.timer, "shape functions");
+    auto              &particle_handler = this->get_particle_handler();
+    TimerOutput::Scope t(this->get_timer(), "shape functions");
     this->clear_active_cells();
     this->shape_functions.resize(particle_handler.n_locally_owned_particles());
     this->points.resize(particle_handler.n_locally_owned_particles());

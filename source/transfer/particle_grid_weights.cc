@@ -8,9 +8,8 @@
 namespace MPM
 {
   template <int dim>
-  ParticleGridWeights<dim>::ParticleGridWeights(
-    const TransferContext<dim> &context)
-    : context(context)
+  ParticleGridWeights<dim>::ParticleGridWeights(Simulator<dim> &simulator)
+      : SimulatorAccess<dim>(simulator)
   {}
 
 
@@ -39,14 +38,14 @@ namespace MPM
 
   template <int dim>
   std::unique_ptr<ParticleGridWeights<dim>>
-  ParticleGridWeights<dim>::create(ParameterHandler           &prm,
-                                   const TransferContext<dim> &context)
+  ParticleGridWeights<dim>::create(ParameterHandler &prm,
+                                   Simulator<dim>   &simulator)
   {
     prm.enter_subsection("Transfer");
     const std::string name = prm.get("Particle-grid weights");
     prm.leave_subsection();
     return ParticleGridWeightsRegistry<dim>::create(
-      name, "Transfer/Particle-grid weights", prm, context);
+      name, "Transfer/Particle-grid weights", prm, simulator);
   }
 
 
@@ -54,7 +53,7 @@ namespace MPM
   void
   ParticleGridWeights<dim>::setup_partition()
   {
-    const NodalVector &v = context.nodal.mass;
+    const NodalVector &v = this->get_nodal_fields().mass;
     chunk_of_dof.assign(v.locally_owned_size() +
                           v.get_partitioner()->n_ghost_indices(),
                         untouched);
@@ -96,10 +95,10 @@ namespace MPM
     const typename Particles::ParticleHandler<dim>::particle_iterator
       &first_point)
   {
-    const BackgroundGrid<dim> &grid = context.grid;
+    const BackgroundGrid<dim> &grid = this->get_grid();
     ActiveCell active{};
     active.n_points    = n;
-    active.dofs        = context.cell_dofs[cell_index];
+    active.dofs        = this->get_cell_dofs()[cell_index];
     active.vertices    = &grid.cell_vertices(cell_index);
     active.size        = grid.cell_size(cell_index);
     active.first_entry = active_cells.empty() ?
@@ -160,21 +159,22 @@ namespace MPM
     // The copies of a touched periodic node are touched too: the
     // particle-to-grid sums give them values (PeriodicNodeGroups), so
     // they are updated and zeroed with the rest.
-    if (!context.periodic_nodes.empty())
+    if (!this->get_periodic_nodes().empty())
       {
         is_touched.resize(chunk_of_dof.size(), false);
         for (const unsigned int i : touched_dofs)
           is_touched[i] = true;
         const unsigned int n_touched_by_cells = touched_dofs.size();
         for (unsigned int k = 0; k < n_touched_by_cells; ++k)
-          context.periodic_nodes.for_each_copy(touched_dofs[k],
-                                               [&](const unsigned int j) {
-                                                 if (!is_touched[j])
-                                                   {
-                                                     is_touched[j] = true;
-                                                     touched_dofs.push_back(j);
-                                                   }
-                                               });
+          this->get_periodic_nodes().for_each_copy(touched_dofs[k],
+                                                   [&](const unsigned int j) {
+                                                     if (!is_touched[j])
+                                                       {
+                                                         is_touched[j] = true;
+                                                         touched_dofs.push_back(
+                                                           j);
+                                                       }
+                                                   });
         for (const unsigned int i : touched_dofs)
           is_touched[i] = false;
       }

@@ -25,6 +25,7 @@
 #include <mpm/restart/checkpointing.h>
 #include <mpm/solver/lost_points.h>
 #include <mpm/solver/rest_criterion.h>
+#include <mpm/solver/simulator_access.h>
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/statistics_file.h>
@@ -68,6 +69,9 @@ namespace MPM
   template <int dim>
   class Simulator : private StepOperations
   {
+    /// The components' way to the run's state (doc/extending.md).
+    friend class SimulatorAccess<dim>;
+
   public:
     /**
      * Names of the user-named subsections (materials, point regions,

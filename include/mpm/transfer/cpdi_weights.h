@@ -28,7 +28,7 @@ namespace MPM
     using ParticleGridWeights<dim>::n_vertices;
 
     /// With the domains' parameters from @p prm.
-    CpdiWeights(const TransferContext<dim> &context, ParameterHandler &prm);
+    CpdiWeights(Simulator<dim> &simulator, ParameterHandler &prm);
 
     bool
     second_moment_bounded_below() const override

@@ -25,7 +25,7 @@ namespace MPM
     using ParticleGridWeights<dim>::n_vertices;
 
     /// No parameters of its own (@p prm is unused).
-    LinearWeights(const TransferContext<dim> &context, ParameterHandler &prm);
+    LinearWeights(Simulator<dim> &simulator, ParameterHandler &prm);
 
   protected:
     double

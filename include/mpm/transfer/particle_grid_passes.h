@@ -77,8 +77,8 @@ namespace MPM
     using typename ParticleGridWeights<dim>::VertexValues;
     using ParticleGridWeights<dim>::n_vertices;
 
-    explicit ParticleGridPasses(const TransferContext<dim> &context)
-      : ParticleGridWeights<dim>(context)
+    explicit ParticleGridPasses(Simulator<dim> &simulator)
+        : ParticleGridWeights<dim>(simulator)
     {}
 
     void

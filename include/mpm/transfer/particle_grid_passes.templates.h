@@ -107,7 +107,7 @@ namespace MPM
   {
     double v_max2 = 0;
     for (auto &findings : chunk_findings)
-      v_max2 = std::max(v_max2, this->context.point_update.record(findings));
+      v_max2 = std::max(v_max2, this->get_point_update().record(findings));
     return v_max2;
   }
 
@@ -117,11 +117,11 @@ namespace MPM
   ParticleGridPasses<dim, Weights>::map_mass_and_momentum(
     const bool with_forces)
   {
-    TimerOutput::Scope t(this->context.timer, "particle to grid");
+    TimerOutput::Scope t(this->get_timer(), "particle to grid");
     using Layout               = PropertyLayout<dim>;
-    NodalFields         &nodal = this->context.nodal;
-    const Tensor<1, dim> g     = this->context.time_stepping.gravity;
-    const Apic<dim>     *apic  = this->context.transfer.apic();
+    NodalFields         &nodal = this->get_nodal_fields();
+    const Tensor<1, dim> g     = this->get_time_stepping().gravity;
+    const Apic<dim>     *apic  = this->get_transfer().apic();
     if (!Weights::entries_are_points)
       gather_point_transfer_data(with_forces);
     if (apic != nullptr && !Weights::entries_are_points)
@@ -208,13 +208,13 @@ namespace MPM
   void
   ParticleGridPasses<dim, Weights>::map_forces()
   {
-    TimerOutput::Scope   t(this->context.timer, "particle to grid");
+    TimerOutput::Scope t(this->get_timer(), "particle to grid");
     using Layout           = PropertyLayout<dim>;
-    const Tensor<1, dim> g = this->context.time_stepping.gravity;
+    const Tensor<1, dim> g = this->get_time_stepping().gravity;
     if (!Weights::entries_are_points)
       gather_point_transfer_data(true);
     this->template for_active_cells<1>(
-      {{&this->context.nodal.force}},
+      {{&this->get_nodal_fields().force}},
       [&](const unsigned int c,
           const unsigned int,
           std::array<VertexValues, 1> &forces) {
@@ -239,7 +239,7 @@ namespace MPM
                 k, point.mass, point.volume, point.stress, g, forces[0]);
             }
       });
-    this->add_contributions_of_all_ranks(this->context.nodal.force);
+    this->add_contributions_of_all_ranks(this->get_nodal_fields().force);
   }
 
 
@@ -339,10 +339,10 @@ namespace MPM
   ParticleGridPasses<dim, Weights>::update_points_from_grid(
     const bool remap_momentum)
   {
-    TimerOutput::Scope t(this->context.timer, "grid to particle");
+    TimerOutput::Scope t(this->get_timer(), "grid to particle");
     using Layout           = PropertyLayout<dim>;
-    NodalFields &nodal     = this->context.nodal;
-    auto        &updater   = this->context.point_update;
+    NodalFields &nodal     = this->get_nodal_fields();
+    auto        &updater   = this->get_point_update();
     // APIC: the new C_p is fitted here, except under MUSL where a point's
     // second moment can vanish (linear weights; a shrunk CPDI domain,
     // Weights::fit_is_stable()): there it is the gradient of the remapped
@@ -543,8 +543,8 @@ namespace MPM
   ParticleGridPasses<dim, Weights>::update_stress(const NodalVector &velocity,
                                                   const bool set_affine)
   {
-    TimerOutput::Scope t(this->context.timer, "stress update");
-    const auto        &updater = this->context.point_update;
+    TimerOutput::Scope t(this->get_timer(), "stress update");
+    const auto        &updater = this->get_point_update();
     const bool         average = updater.averages_volumetric_strain();
     // MUSL with APIC, at the points whose C_p update_points_from_grid()
     // did not fit (Weights::fit_is_stable()): it is this velocity gradient

@@ -16,6 +16,7 @@
 #include <mpm/grid/q1_shape_functions.h>
 #include <mpm/material_points/point_update.h>
 #include <mpm/material_points/property_layout.h>
+#include <mpm/solver/simulator_access.h>
 #include <mpm/solver/time_stepping.h>
 #include <mpm/transfer/phase_kernel.h>
 #include <mpm/transfer/velocity_transfer.h>
@@ -29,34 +30,6 @@
 namespace MPM
 {
   using namespace dealii;
-
-  /**
-   * What the particle-grid weights work on, all owned by the Simulator:
-   * the points, the mesh, the step's nodal fields, the velocity transfer
-   * scheme and the per-point updates. References, so that the weights see
-   * what the Simulator parses and updates after creating them.
-   */
-  template <int dim>
-  struct TransferContext
-  {
-    Particles::ParticleHandler<dim> &particle_handler;
-    const BackgroundGrid<dim>       &grid;
-    NodalFields                     &nodal;
-    const VelocityTransfer<dim>     &transfer;
-    PointUpdate<dim>                &point_update;
-    /// Gravity (in the mesh's frame once the run is set up).
-    const TimeSteppingParameters<dim> &time_stepping;
-    /// The number of steps done, and the step's time step.
-    const unsigned int              &step;
-    const double                    &time_step;
-    /// The nodal-vector entries of each cell's vertices (every
-    /// non-artificial cell).
-    const CellDofTable<dim> &cell_dofs;
-    /// The nodal entries that periodic boundaries make one node.
-    const PeriodicNodeGroups &periodic_nodes;
-    TimerOutput &timer;
-  };
-
 
   /**
    * The particle-grid weights ('Transfer/Particle-grid weights'): how a
@@ -81,9 +54,13 @@ namespace MPM
    * Every pass loops over the active cells (the cells holding points, or
    * with CPDI the cells holding points' corners) and, per cell, over its
    * entries of shape_functions: only what holds material takes part.
+   *
+   * The weights reach the points, the mesh, the step's nodal fields and
+   * the time step through SimulatorAccess, so they see what the
+   * Simulator parses and updates after creating them.
    */
   template <int dim>
-  class ParticleGridWeights
+  class ParticleGridWeights : public SimulatorAccess<dim>
   {
   public:
     static constexpr unsigned int n_vertices =
@@ -91,7 +68,7 @@ namespace MPM
     /// One value per vertex of a cell.
     using VertexValues = std::array<Tensor<1, dim>, n_vertices>;
 
-    explicit ParticleGridWeights(const TransferContext<dim> &context);
+    explicit ParticleGridWeights(Simulator<dim> &simulator);
 
     virtual ~ParticleGridWeights() = default;
 
@@ -103,7 +80,7 @@ namespace MPM
     /// The weights named in @p prm (ParticleGridWeightsRegistry), with
     /// their parameters.
     static std::unique_ptr<ParticleGridWeights<dim>>
-    create(ParameterHandler &prm, const TransferContext<dim> &context);
+    create(ParameterHandler &prm, Simulator<dim> &simulator);
 
     /**
      * Whether a point's second moment under these weights is bounded
@@ -374,7 +351,7 @@ namespace MPM
     {
       v.compress(VectorOperation::add);
       v.update_ghost_values();
-      context.periodic_nodes.sum(v);
+      this->get_periodic_nodes().sum(v);
     }
 
     /**
@@ -429,10 +406,9 @@ namespace MPM
     bool
     affine() const
     {
-      return context.transfer.apic() != nullptr;
+      return this->get_transfer().apic() != nullptr;
     }
 
-    TransferContext<dim> context;
     /// The first slot of the transfer scheme's point data (APIC's C_p).
     unsigned int transfer_slot = 0;
     /// The first slot of the weights' own point data.
@@ -469,38 +445,36 @@ namespace MPM
   /**
    * The registry of particle-grid weights: a creator receives the
    * parameters (at the top level; the weights' entries are in 'Transfer')
-   * and the TransferContext.
+   * and the Simulator the weights belong to (their SimulatorAccess).
    */
   template <int dim>
   using ParticleGridWeightsRegistry =
-    PluginRegistry<ParticleGridWeights<dim>, const TransferContext<dim> &>;
+    PluginRegistry<ParticleGridWeights<dim>, Simulator<dim> &>;
 } // namespace MPM
 
 /**
  * Register the particle-grid weights @p classname (templated on dim, with
- * a constructor (const TransferContext<dim> &, ParameterHandler &)) under
+ * a constructor (Simulator<dim> &, ParameterHandler &)) under
  * @p name ('Transfer/Particle-grid weights'), for 2D and 3D.
  */
-#define MPM_REGISTER_PARTICLE_GRID_WEIGHTS(classname, name, description)   \
-  MPM_REGISTER_PLUGIN(                                                      \
-    MPM::ParticleGridWeightsRegistry<2>,                                    \
-    name,                                                                   \
-    description,                                                            \
-    nullptr,                                                                \
-    [](dealii::ParameterHandler &prm,                                       \
-       const MPM::TransferContext<2> &context) {                            \
-      return std::unique_ptr<MPM::ParticleGridWeights<2>>(                  \
-        std::make_unique<classname<2>>(context, prm));                      \
-    })                                                                      \
-  MPM_REGISTER_PLUGIN(                                                      \
-    MPM::ParticleGridWeightsRegistry<3>,                                    \
-    name,                                                                   \
-    description,                                                            \
-    nullptr,                                                                \
-    [](dealii::ParameterHandler &prm,                                       \
-       const MPM::TransferContext<3> &context) {                            \
-      return std::unique_ptr<MPM::ParticleGridWeights<3>>(                  \
-        std::make_unique<classname<3>>(context, prm));                      \
-    })
+#define MPM_REGISTER_PARTICLE_GRID_WEIGHTS(classname, name, description)     \
+  MPM_REGISTER_PLUGIN(MPM::ParticleGridWeightsRegistry<2>,                   \
+                      name,                                                  \
+                      description,                                           \
+                      nullptr,                                               \
+                      [](dealii::ParameterHandler &prm,                      \
+                         MPM::Simulator<2>        &simulator) {                     \
+                        return std::unique_ptr<MPM::ParticleGridWeights<2>>( \
+                          std::make_unique<classname<2>>(simulator, prm));   \
+                      })                                                     \
+  MPM_REGISTER_PLUGIN(MPM::ParticleGridWeightsRegistry<3>,                   \
+                      name,                                                  \
+                      description,                                           \
+                      nullptr,                                               \
+                      [](dealii::ParameterHandler &prm,                      \
+                         MPM::Simulator<3>        &simulator) {                     \
+                        return std::unique_ptr<MPM::ParticleGridWeights<3>>( \
+                          std::make_unique<classname<3>>(simulator, prm));   \
+                      })
 
 #endif

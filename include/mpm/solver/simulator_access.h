@@ -1,0 +1,124 @@
+#ifndef mpm_solver_simulator_access_h
+#define mpm_solver_simulator_access_h
+
+#include <deal.II/base/timer.h>
+
+#include <deal.II/particles/particle_handler.h>
+
+namespace MPM
+{
+  using namespace dealii;
+
+  template <int dim>
+  class Simulator;
+  template <int dim>
+  class BackgroundGrid;
+  template <int dim>
+  class CellDofTable;
+  template <int dim>
+  class PointUpdate;
+  template <int dim>
+  struct TimeSteppingParameters;
+  template <int dim>
+  class VelocityTransfer;
+  class NodalFields;
+  class PeriodicNodeGroups;
+
+  /**
+   * The one way for a component of a run to reach the run's state, as
+   * ASPECT's SimulatorAccess: a component that needs the points, the
+   * mesh, the step's nodal fields or the time derives from this class
+   * and asks for them by name, instead of being handed a bundle of
+   * references to what its constructor happened to need. The Simulator
+   * owns everything; a SimulatorAccess only points at it, so what the
+   * Simulator parses or updates after creating a component (the time
+   * step, the nodal fields of a new partition) is what the component
+   * sees.
+   *
+   * The getters are defined out of line (source/solver/simulator_access.cc)
+   * so that this header does not need the Simulator's: a component's
+   * header includes this one, and simulator.h includes the components'.
+   * A pass that reads a value per point reads it once, before its loop.
+   *
+   * Mutable access is given to what a component of the step writes: the
+   * points' properties (the particle-grid passes update them), the nodal
+   * fields, the point update's findings and the timer.
+   */
+  template <int dim>
+  class SimulatorAccess
+  {
+  public:
+    /// Not yet attached to a run: initialize_simulator() before use.
+    SimulatorAccess() = default;
+
+    explicit SimulatorAccess(Simulator<dim> &simulator);
+
+    virtual ~SimulatorAccess() = default;
+
+    /// Attach to @p simulator (its lifetime must cover this object's).
+    void
+    initialize_simulator(Simulator<dim> &simulator);
+
+    /// @name The mesh
+    /// @{
+    const BackgroundGrid<dim> &
+    get_grid() const;
+
+    /// The nodal-vector entries of each cell's vertices (every
+    /// non-artificial cell of this rank's partition).
+    const CellDofTable<dim> &
+    get_cell_dofs() const;
+
+    /// The nodal entries that periodic boundaries make one node.
+    const PeriodicNodeGroups &
+    get_periodic_nodes() const;
+    /// @}
+
+    /// @name The points and the nodes
+    /// @{
+    Particles::ParticleHandler<dim> &
+    get_particle_handler() const;
+
+    /// A point's new velocity, position and stress from its interpolated
+    /// grid values, and what the updates found (PointUpdate::record()).
+    PointUpdate<dim> &
+    get_point_update() const;
+
+    /// The step's nodal fields, the phases' included.
+    NodalFields &
+    get_nodal_fields() const;
+
+    /// The velocity transfer scheme ('Transfer/Scheme').
+    const VelocityTransfer<dim> &
+    get_transfer() const;
+    /// @}
+
+    /// @name Time
+    /// @{
+    /// 'Time stepping', with gravity in the mesh's frame once the run is
+    /// set up.
+    const TimeSteppingParameters<dim> &
+    get_time_stepping() const;
+
+    /// The number of steps done.
+    unsigned int
+    get_step() const;
+
+    /// The step's time step (s).
+    double
+    get_time_step() const;
+
+    double
+    get_time() const;
+
+    /// The run's timer sections (rank 0's wall times).
+    TimerOutput &
+    get_timer() const;
+    /// @}
+
+  private:
+    Simulator<dim> *simulator = nullptr;
+  };
+} // namespace MPM
+
+#endif
