@@ -25,7 +25,7 @@ namespace MPM
       // mass. The wall only pushes, so it resists only if it is positive.
       const double v_n      = v * n;
       const double a_n      = a * n;
-      const double reaction = v_n / dt + a_n;
+      const double reaction = normal_reaction(v, a, n, dt);
       if (reaction <= 0)
         {
           if (!held || !law.rate_dependent())
