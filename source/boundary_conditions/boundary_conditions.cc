@@ -627,7 +627,6 @@ namespace MPM
   }
 
 
-
   template <int dim>
   std::array<double, 2>
   BoundaryConditions<dim>::edge_pore_water_relief(const unsigned int      k,

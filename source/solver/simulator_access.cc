@@ -11,14 +11,6 @@ namespace MPM
 
 
   template <int dim>
-  void
-  SimulatorAccess<dim>::initialize_simulator(Simulator<dim> &simulator_)
-  {
-    simulator = &simulator_;
-  }
-
-
-  template <int dim>
   const BackgroundGrid<dim> &
   SimulatorAccess<dim>::get_grid() const
   {
@@ -95,14 +87,6 @@ namespace MPM
   SimulatorAccess<dim>::get_time_step() const
   {
     return simulator->time_step;
-  }
-
-
-  template <int dim>
-  double
-  SimulatorAccess<dim>::get_time() const
-  {
-    return simulator->time;
   }
 
 

@@ -48,16 +48,10 @@ namespace MPM
   class SimulatorAccess
   {
   public:
-    /// Not yet attached to a run: initialize_simulator() before use.
-    SimulatorAccess() = default;
-
+    /// Attached to @p simulator, whose lifetime must cover this object's.
     explicit SimulatorAccess(Simulator<dim> &simulator);
 
     virtual ~SimulatorAccess() = default;
-
-    /// Attach to @p simulator (its lifetime must cover this object's).
-    void
-    initialize_simulator(Simulator<dim> &simulator);
 
     /// @name The mesh
     /// @{
@@ -108,16 +102,13 @@ namespace MPM
     double
     get_time_step() const;
 
-    double
-    get_time() const;
-
     /// The run's timer sections (rank 0's wall times).
     TimerOutput &
     get_timer() const;
     /// @}
 
   private:
-    Simulator<dim> *simulator = nullptr;
+    Simulator<dim> *const simulator;
   };
 } // namespace MPM
 
