@@ -6,7 +6,8 @@
 # Usage: scripts/column_collapse_sweep.sh [aspect ratios, default "0.5 1 2 3 4 6"] [extra mpm arguments...]
 # Environment: MPM_CELL_SIZE (m, default 0.005), MPM_SWEEP_NAME (default:
 # the shipped file, written to doc/column_collapse.csv; another name writes
-# doc/column_collapse_NAME.csv). The shipped file runs the default transfer
+# doc/column_collapse_NAME.csv), MPM_SWEEP_APPEND=1 (add the rows to that CSV
+# instead of starting it anew: one more a on a mesh run before). The shipped file runs the default transfer
 # (APIC on CPDI weights); the cheaper FLIP/PIC blend of doc/column_collapse.md,
 # "Other transfers":
 #   MPM_SWEEP_NAME=blend scripts/column_collapse_sweep.sh "0.5 1 2 3 4 6" \
@@ -21,7 +22,8 @@ name_suffix="${MPM_SWEEP_NAME:+_$MPM_SWEEP_NAME}"
 out="output-column-collapse-sweep$name_suffix"
 mkdir -p "$out"
 csv="$MPM_ROOT/doc/column_collapse$name_suffix.csv"
-echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start,connected_runout,runout_95_percent_volume,runout_99_percent_volume" > "$csv"
+[ -n "${MPM_SWEEP_APPEND:-}" ] && [ -s "$csv" ] ||
+  echo "a,runout,final_height_over_L0,stop_time_s,mean_speed_end,lube_2005,points,wall_s,deposit_runout,volume_end_over_start,connected_runout,runout_95_percent_volume,runout_99_percent_volume" > "$csv"
 L0=0.1
 h="${MPM_CELL_SIZE:-0.005}"
 for a in $ratios; do

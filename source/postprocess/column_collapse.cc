@@ -112,14 +112,14 @@ namespace MPM
 
     template <int dim>
     std::array<double, 3>
-    ColumnCollapse<dim>::measure(const Simulator<dim> &simulator) const
+    ColumnCollapse<dim>::measure() const
     {
       using Layout = PropertyLayout<dim>;
       // The edge of the deposit: a point stands for a square of side
       // V_p^(1/dim) around it.
       std::array<double, 2> extremes{{-1e300, -1e300}};
       double                speed_sum = 0;
-      for (const auto &point : simulator.get_particle_handler())
+      for (const auto &point : this->get_particle_handler())
         {
           const auto   props = point.get_properties();
           const double half =
@@ -129,11 +129,11 @@ namespace MPM
           extremes[1]        = std::max(extremes[1], x[dim - 1] + half);
           speed_sum += read_vector<dim>(&props[Layout::velocity]).norm();
         }
-      const MPI_Comm comm = simulator.get_mpi_communicator();
+      const MPI_Comm comm = this->get_mpi_communicator();
       Utilities::MPI::max(ArrayView<const double>(extremes),
                           comm,
                           ArrayView<double>(extremes));
-      const double n = simulator.get_particle_handler().n_global_particles();
+      const double n = this->get_particle_handler().n_global_particles();
       return {{extremes[0] - wall,
                extremes[1] - base,
                Utilities::MPI::sum(speed_sum, comm) / std::max(n, 1.)}};
@@ -142,11 +142,11 @@ namespace MPM
 
     template <int dim>
     void
-    ColumnCollapse<dim>::initialize(const Simulator<dim> &simulator)
+    ColumnCollapse<dim>::initialize()
     {
       // The first line of the table: the column's extent at the start,
       // measured as the front and the height are later.
-      execute(simulator, true);
+      execute(true);
       // L0 and H0: given ones must be the column's.
       const auto take = [](const double given,
                            const double measured,
@@ -166,32 +166,31 @@ namespace MPM
       width          = take(given_width, front, "Initial width");
       initial_height = take(given_height, height, "Initial height");
       double volume = 0;
-      for (const auto &point : simulator.get_particle_handler())
+      for (const auto &point : this->get_particle_handler())
         volume += point.get_properties()[PropertyLayout<dim>::volume];
       initial_volume =
-        Utilities::MPI::sum(volume, simulator.get_mpi_communicator());
+        Utilities::MPI::sum(volume, this->get_mpi_communicator());
     }
 
 
     template <int dim>
     void
-    ColumnCollapse<dim>::execute(const Simulator<dim> &simulator,
-                                 const bool            output_step)
+    ColumnCollapse<dim>::execute(const bool output_step)
     {
       // The mean speed at every step (for the stop time), the front and
       // height at output times only.
-      const auto m = measure(simulator);
+      const auto m = measure();
       mean_speed   = m[2];
       if (mean_speed >= stop_speed)
-        last_time_above_stop = simulator.get_time();
+        last_time_above_stop = this->get_time();
       front  = m[0];
       height = m[1];
       if (output_step)
         {
           std::ostringstream line;
-          line << std::setw(10) << simulator.get_time() << std::setw(14)
-               << front << std::setw(14) << height << std::setw(14)
-               << mean_speed << '\n';
+          line << std::setw(10) << this->get_time() << std::setw(14) << front
+               << std::setw(14) << height << std::setw(14) << mean_speed
+               << '\n';
           table += line.str();
         }
     }
@@ -199,8 +198,7 @@ namespace MPM
 
     template <int dim>
     void
-    ColumnCollapse<dim>::write_report(const Simulator<dim> &simulator,
-                                      std::ostream         &report)
+    ColumnCollapse<dim>::write_report(std::ostream &report)
     {
       const double a = initial_height / width;
       report << "## column collapse: L0 = " << width
@@ -215,7 +213,7 @@ namespace MPM
         report << "mean speed below " << stop_speed << " m/s from t = "
                << last_time_above_stop << " s on\n";
       else
-        report << "still flowing at t = " << simulator.get_time()
+        report << "still flowing at t = " << this->get_time()
                << " s: the runout is not final\n";
       // Lube et al. (2005) as commonly quoted (doc/column_collapse.md).
       report << "Lube et al. 2005 (as quoted): "
@@ -225,7 +223,7 @@ namespace MPM
       using Layout        = PropertyLayout<dim>;
       const long n_bins   = std::max(1L, std::lround((front - 0) / bin_width) + 1);
       std::vector<double> thickness(n_bins, 0.);
-      for (const auto &point : simulator.get_particle_handler())
+      for (const auto &point : this->get_particle_handler())
         {
           const long b = std::min(
             n_bins - 1,
@@ -238,9 +236,7 @@ namespace MPM
       // side walls): thickness is volume per bin width per channel width.
       const double channel_width =
         dim == 2 ? 1. : initial_volume / (width * initial_height);
-      Utilities::MPI::sum(thickness,
-                          simulator.get_mpi_communicator(),
-                          thickness);
+      Utilities::MPI::sum(thickness, this->get_mpi_communicator(), thickness);
       double volume = 0;
       for (double &t : thickness)
         {

@@ -31,9 +31,9 @@ namespace MPM
       {}
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
-        const auto s = simulator.compute_statistics();
+        const auto s = this->compute_statistics();
         mass0        = s.mass;
         momentum0    = s.momentum;
         // sum_p m_p |v_p| would be the natural scale without gravity; the
@@ -43,17 +43,18 @@ namespace MPM
         energy0 =
           s.kinetic_energy + s.strain_energy + s.gravitational_potential_energy;
         time0 = s.time;
-        const auto spin = simulator.spin_angular_momentum(Point<dim>(s.centre_of_mass),
-                                                          s.mean_velocity);
+        const auto spin =
+          this->spin_angular_momentum(Point<dim>(s.centre_of_mass),
+                                      s.mean_velocity);
         angular_momentum0 = spin.first;
         angular_momentum_scale0 = spin.second;
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
-        const auto     s = simulator.compute_statistics();
-        const auto     g = simulator.get_time_stepping().gravity;
+        const auto           s          = this->compute_statistics();
+        const auto           g          = this->get_time_stepping().gravity;
         const double   t = s.time - time0;
         const Tensor<1, dim> expected = momentum0 + mass0 * g * t;
         const double mass_error = std::abs(s.mass - mass0) / mass0;
@@ -72,8 +73,9 @@ namespace MPM
         max_energy_change  = std::max(max_energy_change, std::abs(energy_change));
         // Spin: angular momentum about the moving centre of mass, which
         // uniform gravity does not change.
-        const auto spin = simulator.spin_angular_momentum(Point<dim>(s.centre_of_mass),
-                                                          s.mean_velocity);
+        const auto spin =
+          this->spin_angular_momentum(Point<dim>(s.centre_of_mass),
+                                      s.mean_velocity);
         const double angular_momentum_error =
           (spin.first - angular_momentum0).norm() /
           std::max({1e-300, angular_momentum_scale0, spin.second});
@@ -91,7 +93,7 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         report << "## conservation: mass and momentum against M0 and p0 + M0 "
                   "g t\n"

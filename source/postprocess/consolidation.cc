@@ -103,15 +103,15 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
-        const auto &water = simulator.get_pore_water();
+        const auto &water = this->get_pore_water();
         check_input(water.active(),
                     "Postprocess/consolidation needs a saturated material "
                     "(Materials/NAME/Porosity > 0).");
         if (c_v == 0)
           {
-            const auto &materials = simulator.get_materials();
+            const auto &materials = this->get_materials();
             for (unsigned int m = 0; m < materials.size(); ++m)
               if (materials[m].porosity > 0)
                 {
@@ -129,15 +129,15 @@ namespace MPM
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool) override
+      execute(const bool) override
       {
-        const double T = c_v * simulator.get_time() / (thickness * thickness);
+        const double T = c_v * this->get_time() / (thickness * thickness);
         const bool   at_factor =
           rows.size() < time_factors.size() && T >= time_factors[rows.size()];
         const bool watching = crossing[1] < 0;
         if (!at_factor && !watching)
           return;
-        const auto sums = compare(simulator, T, at_factor);
+        const auto   sums       = compare(T, at_factor);
         const double U = 1 - sums[0] / (u0 * sums[1]);
         const double targets[2] = {0.5, 0.9};
         for (unsigned int i = 0; i < 2; ++i)
@@ -157,7 +157,7 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         // One 'label: value' a line (scripts/convergence.py reads them).
         report << "## consolidation: Terzaghi, H = " << thickness
@@ -236,23 +236,20 @@ namespace MPM
       /// sum V (u - u_T)^2, sum V (the last three only if @p full: a row
       /// is due).
       std::array<double, 5>
-      compare(const Simulator<dim> &simulator,
-              const double          T,
-              const bool            full) const
+      compare(const double T, const bool full) const
       {
         using Layout        = PropertyLayout<dim>;
-        const auto &water   = simulator.get_pore_water();
+        const auto  &water  = this->get_pore_water();
         const double gamma_w =
-          water.density() * simulator.get_time_stepping().gravity.norm();
+          water.density() * this->get_time_stepping().gravity.norm();
         std::array<double, 5> sums{};
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const auto props = point.get_properties();
             if (props[water.porosity_slot()] == 0)
               continue;
             const double z =
-              simulator.get_grid().to_scene_frame(point.get_location())[dim -
-                                                                        1];
+              this->get_grid().to_scene_frame(point.get_location())[dim - 1];
             const double V = props[Layout::volume];
             const double u =
               props[water.pressure_slot()] - gamma_w * (top - z);
@@ -270,7 +267,7 @@ namespace MPM
                 sums[4] += V;
               }
           }
-        const MPI_Comm comm = simulator.get_mpi_communicator();
+        const MPI_Comm comm = this->get_mpi_communicator();
         const double   max  = Utilities::MPI::max(sums[2], comm);
         Utilities::MPI::sum(ArrayView<const double>(sums.data(), 5),
                             comm,

@@ -53,35 +53,35 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &) override
+      initialize() override
       {
         fronts.clear();
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool) override
+      execute(const bool) override
       {
         if (fronts.size() == reference.size())
           return;
-        const double g = simulator.get_time_stepping().gravity.norm();
-        const double T = simulator.get_time() * std::sqrt(2 * g / width);
+        const double g = this->get_time_stepping().gravity.norm();
+        const double T = this->get_time() * std::sqrt(2 * g / width);
         if (T < reference[fronts.size()][0])
           return;
         double front = -std::numeric_limits<double>::max();
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const double x =
-              simulator.get_grid().to_scene_frame(point.get_location())[0];
+              this->get_grid().to_scene_frame(point.get_location())[0];
             const double V =
               point.get_properties()[PropertyLayout<dim>::volume];
             front = std::max(front, x + 0.5 * std::pow(V, 1. / dim));
           }
-        front = Utilities::MPI::max(front, simulator.get_mpi_communicator());
+        front = Utilities::MPI::max(front, this->get_mpi_communicator());
         fronts.push_back({{T, (front - back_wall) / width}});
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         report << "## dam break: surge front Z = x / a against Martin and "
                   "Moyce (1952), n^2 = 2, a = "

@@ -10,9 +10,9 @@ namespace MPM
   {
     template <int dim>
     void
-    EnergyBalance<dim>::initialize(const Simulator<dim> &simulator)
+    EnergyBalance<dim>::initialize()
     {
-      const auto s = simulator.compute_statistics();
+      const auto s = this->compute_statistics();
       energy0 =
         s.kinetic_energy + s.strain_energy + s.gravitational_potential_energy;
       max_moving_energy = s.kinetic_energy + s.strain_energy;
@@ -21,10 +21,9 @@ namespace MPM
 
     template <int dim>
     void
-    EnergyBalance<dim>::execute(const Simulator<dim> &simulator,
-                                const bool            output_step)
+    EnergyBalance<dim>::execute(const bool output_step)
     {
-      const auto   s      = simulator.compute_statistics();
+      const auto   s      = this->compute_statistics();
       const double moving = s.kinetic_energy + s.strain_energy;
       const double gain   = moving + s.gravitational_potential_energy - energy0;
       max_gain            = std::max(max_gain, gain);
@@ -41,8 +40,7 @@ namespace MPM
 
     template <int dim>
     void
-    EnergyBalance<dim>::write_report(const Simulator<dim> &,
-                                     std::ostream         &report)
+    EnergyBalance<dim>::write_report(std::ostream &report)
     {
       const char *unit = dim == 2 ? " J/m" : " J";
       report << "## energy balance: E = kinetic + strain + gravitational "

@@ -120,27 +120,27 @@ namespace MPM
 
     template <int dim>
     typename Flume<dim>::Sample
-    Flume<dim>::sample(const Simulator<dim> &simulator) const
+    Flume<dim>::sample() const
     {
       using Layout = PropertyLayout<dim>;
       // [-s_front, s_tail] for one min(), then sum |v|, sum v_x, sum v_y.
       double      extremes[2] = {std::numeric_limits<double>::max(),
                                  std::numeric_limits<double>::max()};
       double      sums[3]     = {0, 0, 0};
-      const auto &grid        = simulator.get_grid();
-      for (const auto &point : simulator.get_particle_handler())
-      {
-        const Point<dim> x = grid.to_scene_frame(point.get_location());
-        const Tensor<1, dim> v = grid.to_scene_frame(
-          read_vector<dim>(&point.get_properties()[Layout::velocity]));
-        const double     s = bed_coordinates(x[0], x[1]).first;
-        extremes[0]        = std::min(extremes[0], -s);
-        extremes[1]        = std::min(extremes[1], s);
-        sums[0] += v.norm();
-        sums[1] += v[0];
-        sums[2] += v[1];
-      }
-      const MPI_Comm comm = simulator.get_mpi_communicator();
+      const auto &grid        = this->get_grid();
+      for (const auto &point : this->get_particle_handler())
+        {
+          const Point<dim>     x = grid.to_scene_frame(point.get_location());
+          const Tensor<1, dim> v = grid.to_scene_frame(
+            read_vector<dim>(&point.get_properties()[Layout::velocity]));
+          const double s = bed_coordinates(x[0], x[1]).first;
+          extremes[0]    = std::min(extremes[0], -s);
+          extremes[1]    = std::min(extremes[1], s);
+          sums[0] += v.norm();
+          sums[1] += v[0];
+          sums[2] += v[1];
+        }
+      const MPI_Comm comm = this->get_mpi_communicator();
       Utilities::MPI::min(ArrayView<const double>(extremes, 2),
                           comm,
                           ArrayView<double>(extremes, 2));
@@ -148,10 +148,9 @@ namespace MPM
                           comm,
                           ArrayView<double>(sums, 3));
       const double n =
-        std::max<double>(1,
-                         simulator.get_particle_handler().n_global_particles());
+        std::max<double>(1, this->get_particle_handler().n_global_particles());
       Sample r;
-      r.time             = simulator.get_time();
+      r.time             = this->get_time();
       r.s_front          = -extremes[0];
       r.s_tail           = extremes[1];
       r.x_front          = bed_point(r.s_front)[0];
@@ -165,37 +164,37 @@ namespace MPM
 
     template <int dim>
     void
-    Flume<dim>::initialize(const Simulator<dim> &simulator)
+    Flume<dim>::initialize()
     {
-      samples.push_back(sample(simulator));
-      n_points_initial = simulator.get_particle_handler().n_global_particles();
+      samples.push_back(sample());
+      n_points_initial = this->get_particle_handler().n_global_particles();
     }
 
 
     template <int dim>
     void
-    Flume<dim>::execute(const Simulator<dim> &simulator, const bool output_step)
+    Flume<dim>::execute(const bool output_step)
     {
       // The front and tail only at output times; the mean speed, for its
       // peak and the stop time, at every step.
       Sample s;
       if (output_step)
       {
-        s = sample(simulator);
+        s = sample();
         samples.push_back(s);
       }
       else
       {
         using Layout = PropertyLayout<dim>;
         double sum   = 0;
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           sum +=
             read_vector<dim>(&point.get_properties()[Layout::velocity]).norm();
-        s.time = simulator.get_time();
+        s.time = this->get_time();
         s.mean_speed =
-          Utilities::MPI::sum(sum, simulator.get_mpi_communicator()) /
-          std::max<double>(
-            1, simulator.get_particle_handler().n_global_particles());
+          Utilities::MPI::sum(sum, this->get_mpi_communicator()) /
+          std::max<double>(1,
+                           this->get_particle_handler().n_global_particles());
       }
       if (s.mean_speed > peak_speed)
       {
@@ -215,12 +214,11 @@ namespace MPM
 
     template <int dim>
     void
-    Flume<dim>::write_report(const Simulator<dim> &simulator,
-                             std::ostream         &report)
+    Flume<dim>::write_report(std::ostream &report)
     {
       using Layout        = PropertyLayout<dim>;
-      const auto    &grid = simulator.get_grid();
-      const MPI_Comm comm = simulator.get_mpi_communicator();
+      const auto    &grid = this->get_grid();
+      const MPI_Comm comm = this->get_mpi_communicator();
 
       report
         << "## flume: incline " << theta * 180 / M_PI << " deg, arc radius "
@@ -230,8 +228,7 @@ namespace MPM
            "(negative upslope), x of the bed point at s\n"
         << "# time (s)   s_front (m)   s_tail (m)   x_front (m)   "
            "x_tail (m)   mean |v| (m/s)   mean v_x (m/s)   mean v_y (m/s)\n";
-      const auto n_points =
-        simulator.get_particle_handler().n_global_particles();
+      const auto n_points = this->get_particle_handler().n_global_particles();
       for (const auto &s : samples)
         report << std::setw(10) << s.time << std::setw(14) << s.s_front
                << std::setw(14) << s.s_tail << std::setw(14) << s.x_front
@@ -271,17 +268,17 @@ namespace MPM
         std::floor(samples.back().s_front / bin_width) - first_bin + 1;
       // Per bin: volume, number of points; largest height separately.
       std::vector<double> sums(2 * n_bins, 0.), heights(n_bins, 0.);
-      for (const auto &point : simulator.get_particle_handler())
-      {
-        const Point<dim> x = grid.to_scene_frame(point.get_location());
-        const auto [s, h]  = bed_coordinates(x[0], x[1]);
-        const long b = std::clamp<long>(std::floor(s / bin_width) - first_bin,
-                                        0,
-                                        n_bins - 1);
-        sums[2 * b] += point.get_properties()[Layout::volume];
-        sums[2 * b + 1] += 1;
-        heights[b] = std::max(heights[b], h);
-      }
+      for (const auto &point : this->get_particle_handler())
+        {
+          const Point<dim> x = grid.to_scene_frame(point.get_location());
+          const auto [s, h]  = bed_coordinates(x[0], x[1]);
+          const long b = std::clamp<long>(std::floor(s / bin_width) - first_bin,
+                                          0,
+                                          n_bins - 1);
+          sums[2 * b] += point.get_properties()[Layout::volume];
+          sums[2 * b + 1] += 1;
+          heights[b] = std::max(heights[b], h);
+        }
       Utilities::MPI::sum(sums, comm, sums);
       Utilities::MPI::max(heights, comm, heights);
       report << "## flume: final deposit, bins of " << bin_width

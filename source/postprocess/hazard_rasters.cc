@@ -114,30 +114,30 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
         check_input(dim == 3,
                     "Postprocess/List of postprocessors: 'hazard rasters' "
                     "maps a 3D flow over the terrain; this scene is 2D.");
-        set_up_raster(simulator);
-        accumulate(simulator);
+        set_up_raster();
+        accumulate();
         released_volume = total_volume();
         released_point_volume = point_volume;
         released_height = *std::max_element(height.begin(), height.end());
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
         // A resumed run does not call initialize(): the raster's geometry
         // comes from the checkpoint.
-        accumulate(simulator);
+        accumulate();
         if (output_step)
-          write_rasters(simulator);
+          write_rasters();
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         const double area = raster.spacing * raster.spacing;
         double       deposit_volume = 0, largest[3] = {0, 0, 0};
@@ -188,9 +188,9 @@ namespace MPM
     private:
       /// The raster's geometry from the DEM, a cell size, or the mesh.
       void
-      set_up_raster(const Simulator<dim> &simulator)
+      set_up_raster()
       {
-        const ElevationModel *dem = simulator.get_grid().elevation_model();
+        const ElevationModel *dem = this->get_grid().elevation_model();
         if (dem != nullptr && cell_size_setting == "elevation model")
           {
             raster   = *dem;
@@ -212,14 +212,14 @@ namespace MPM
               }
             else
               {
-                const auto &grid = simulator.get_grid();
+                const auto &grid = this->get_grid();
                 const auto  box =
                   GridTools::compute_bounding_box(grid.triangulation);
                 const Point<dim> a =
                   grid.to_scene_frame(box.get_boundary_points().first);
                 const Point<dim> b =
                   grid.to_scene_frame(box.get_boundary_points().second);
-                const MPI_Comm comm = simulator.get_mpi_communicator();
+                const MPI_Comm comm = this->get_mpi_communicator();
                 for (unsigned int d = 0; d < 2; ++d)
                   {
                     lower[d] = Utilities::MPI::min(std::min(a[d], b[d]), comm);
@@ -254,12 +254,12 @@ namespace MPM
        * the flow height is set to zero where the last window was.
        */
       void
-      accumulate(const Simulator<dim> &simulator)
+      accumulate()
       {
         using Layout           = PropertyLayout<dim>;
-        const auto &grid       = simulator.get_grid();
-        const MPI_Comm comm    = simulator.get_mpi_communicator();
-        const auto    &materials = simulator.get_materials();
+        const auto    &grid      = this->get_grid();
+        const MPI_Comm comm      = this->get_mpi_communicator();
+        const auto    &materials = this->get_materials();
         // Each point's lower-left node (i, j) and weights; the window.
         struct Spread
         {
@@ -268,11 +268,12 @@ namespace MPM
           Tensor<1, dim> momentum;
         };
         std::vector<Spread> spreads;
-        spreads.reserve(simulator.get_particle_handler().n_locally_owned_particles());
+        spreads.reserve(
+          this->get_particle_handler().n_locally_owned_particles());
         // Window: -i_min, -j_min, i_max, j_max (one max() for all four).
         double window[4] = {-double(raster.n_x), -double(raster.n_y), -1, -1};
         double own_volume = 0;
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const Point<dim> x = grid.to_scene_frame(point.get_location());
             const double s = std::clamp((x[0] - raster.x0) / raster.spacing,
@@ -375,11 +376,11 @@ namespace MPM
       }
 
       void
-      write_rasters(const Simulator<dim> &simulator)
+      write_rasters()
       {
-        if (Utilities::MPI::this_mpi_process(simulator.get_mpi_communicator()) != 0)
+        if (Utilities::MPI::this_mpi_process(this->get_mpi_communicator()) != 0)
           return;
-        const std::string &directory = simulator.get_output_directory();
+        const std::string &directory = this->get_output_directory();
         const std::pair<const char *, const std::vector<double> *> maps[] = {
           {"max_flow_height", &max_height},
           {"max_speed", &max_speed},

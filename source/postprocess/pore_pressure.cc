@@ -32,29 +32,28 @@ namespace MPM
       {}
 
       void
-      execute(const Simulator<dim> &, const bool) override
+      execute(const bool) override
       {}
 
       void
-      write_report(const Simulator<dim> &simulator,
-                   std::ostream         &report) override
+      write_report(std::ostream &report) override
       {
         using Layout       = PropertyLayout<dim>;
-        const auto &water  = simulator.get_pore_water();
+        const auto &water  = this->get_pore_water();
         // sum V p, sum V, sum V sigma'_vv; least and largest p.
         std::array<double, 3> sums{};
         double least = std::numeric_limits<double>::max();
         double largest = -std::numeric_limits<double>::max();
         std::vector<double>   pressures;
         if (water.active())
-          for (const auto &point : simulator.get_particle_handler())
+          for (const auto &point : this->get_particle_handler())
             {
               const auto props = point.get_properties();
               if (props[water.porosity_slot()] == 0)
                 continue;
               const double V = props[Layout::volume];
               const double p = props[water.pressure_slot()];
-              const auto   stress = simulator.get_grid().to_scene_frame(
+              const auto   stress = this->get_grid().to_scene_frame(
                 read_symmetric_tensor(&props[Layout::stress]));
               sums[0] += V * p;
               sums[1] += V;
@@ -63,7 +62,7 @@ namespace MPM
               largest = std::max(largest, p);
               pressures.push_back(p);
             }
-        const MPI_Comm comm = simulator.get_mpi_communicator();
+        const MPI_Comm comm = this->get_mpi_communicator();
         Utilities::MPI::sum(ArrayView<const double>(sums.data(), 3),
                             comm,
                             ArrayView<double>(sums.data(), 3));

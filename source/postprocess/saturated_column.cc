@@ -78,24 +78,23 @@ namespace MPM
       }
 
       void
-      execute(const Simulator<dim> &, const bool) override
+      execute(const bool) override
       {}
 
       void
-      write_report(const Simulator<dim> &simulator,
-                   std::ostream         &report) override
+      write_report(std::ostream &report) override
       {
         using Layout         = PropertyLayout<dim>;
-        const auto  &water   = simulator.get_pore_water();
-        const auto  &mats    = simulator.get_materials();
-        const double g       = simulator.get_time_stepping().gravity.norm();
+        const auto  &water   = this->get_pore_water();
+        const auto  &mats    = this->get_materials();
+        const double g       = this->get_time_stepping().gravity.norm();
         const double rho_w   = water.density();
         // Largest |error| of p and sigma'_yy, their largest exact values,
         // largest squared speeds of skeleton and water.
         std::array<double, 6> m{};
         // Seepage: sums of V, V n (v_w - v_s)_y and V k / mu.
         std::array<double, 3> flux{};
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const auto props = point.get_properties();
             const double n   = props[water.porosity_slot()];
@@ -104,8 +103,7 @@ namespace MPM
             const auto &material =
               mats[static_cast<unsigned int>(props[Layout::material_id])];
             const double y =
-              simulator.get_grid().to_scene_frame(point.get_location())[dim -
-                                                                        1];
+              this->get_grid().to_scene_frame(point.get_location())[dim - 1];
             const double p_exact =
               rho_w * g * (water_table - y) +
               (excess == 0 ? 0. : excess * (surface - y) / (surface - base));
@@ -122,18 +120,16 @@ namespace MPM
             if (excess != 0)
               {
                 const double V = props[Layout::volume];
-                const auto   relative =
-                  simulator.get_grid().to_scene_frame(
-                    read_vector<dim>(&props[water.velocity_slot()]) -
-                    read_vector<dim>(&props[Layout::velocity]));
+                const auto   relative = this->get_grid().to_scene_frame(
+                  read_vector<dim>(&props[water.velocity_slot()]) -
+                  read_vector<dim>(&props[Layout::velocity]));
                 flux[0] += V;
                 flux[1] += V * n * relative[dim - 1];
                 flux[2] += V * material.permeability /
                            water.get_viscosity();
               }
-            const auto stress =
-              simulator.get_grid().to_scene_frame(
-                read_symmetric_tensor(&props[Layout::stress]));
+            const auto stress = this->get_grid().to_scene_frame(
+              read_symmetric_tensor(&props[Layout::stress]));
             m[0] =
               std::max(m[0], std::abs(props[water.pressure_slot()] - p_points));
             m[1] = std::max(m[1], std::abs(p_exact));
@@ -148,10 +144,10 @@ namespace MPM
                          .norm_square());
           }
         Utilities::MPI::max(ArrayView<const double>(m.data(), 6),
-                            simulator.get_mpi_communicator(),
+                            this->get_mpi_communicator(),
                             ArrayView<double>(m.data(), 6));
         Utilities::MPI::sum(ArrayView<const double>(flux.data(), 3),
-                            simulator.get_mpi_communicator(),
+                            this->get_mpi_communicator(),
                             ArrayView<double>(flux.data(), 3));
         if (excess == 0)
           report << "Saturated layer at rest (surface " << surface

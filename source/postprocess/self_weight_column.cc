@@ -61,30 +61,30 @@ namespace MPM
       }
 
       void
-      execute(const Simulator<dim> &, const bool) override
+      execute(const bool) override
       {}
 
       void
-      write_report(const Simulator<dim> &simulator, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         using Layout   = PropertyLayout<dim>;
-        const double g = simulator.get_time_stepping().gravity[dim - 1];
+        const double g = this->get_time_stepping().gravity[dim - 1];
         // Volume-weighted sums per horizontal layer of thickness
         // base_layer: [volume, sigma_yy, exact], the L2 sums, and the
         // column's mass and volume.
         const unsigned int  n_layers = std::ceil(height / base_layer - 1e-9);
         std::vector<double> sums(3 * n_layers + 4, 0.);
         double              rho_ref = 0, modulus = 0;
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const auto      props = point.get_properties();
             const Material &material =
-              simulator.get_materials()
-                [static_cast<unsigned int>(props[Layout::material_id])];
+              this->get_materials()[static_cast<unsigned int>(
+                props[Layout::material_id])];
             rho_ref = material.density;
             modulus = material.model->p_wave_modulus();
           }
-        const MPI_Comm comm = simulator.get_mpi_communicator();
+        const MPI_Comm comm = this->get_mpi_communicator();
         rho_ref             = Utilities::MPI::max(rho_ref, comm);
         modulus             = Utilities::MPI::max(modulus, comm);
         // a = rho0 g / M (g < 0 here: a is the compressive sense's
@@ -95,7 +95,7 @@ namespace MPM
                    y :
                    std::log1p(a * y * std::exp(a * height)) / a;
         };
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const auto   props  = point.get_properties();
             const double y      = point.get_location()[dim - 1] - base;

@@ -128,10 +128,10 @@ namespace MPM
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
-        const auto   mean  = mean_stress(simulator);
-        const double gamma = rate * simulator.get_time();
+        const auto   mean  = mean_stress();
+        const double gamma = rate * this->get_time();
         if (!closed_form)
           {
             if (output_step)
@@ -163,24 +163,24 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &simulator, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         using Layout       = PropertyLayout<dim>;
-        const double gamma = rate * simulator.get_time();
+        const double gamma = rate * this->get_time();
         if (!closed_form)
           {
-            write_band_report(simulator, gamma, report);
+            write_band_report(gamma, report);
             return;
           }
         const auto   exact = exact_stress(gamma);
-        const auto  &grid  = simulator.get_grid();
+        const auto  &grid  = this->get_grid();
         // Largest deviations of single points (in the averaging window) at
         // the end: stress / G and
         // velocity / (gamma_dot H).
         std::array<double, 2> worst{{0., 0.}};
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
-            if (!in_window(simulator, point.get_location()))
+            if (!in_window(point.get_location()))
               continue;
             const auto props = point.get_properties();
             const auto sigma = grid.to_scene_frame(
@@ -199,7 +199,7 @@ namespace MPM
                                 (v - v_exact).norm() /
                                   std::max(1e-300, std::abs(rate) * height));
           }
-        const MPI_Comm comm = simulator.get_mpi_communicator();
+        const MPI_Comm comm = this->get_mpi_communicator();
         for (auto &w : worst)
           w = Utilities::MPI::max(w, comm);
         report << "## simple shear: volume-mean stress / G against the closed "
@@ -240,21 +240,19 @@ namespace MPM
        * bin means) and the equivalent width of that profile.
        */
       void
-      write_band_report(const Simulator<dim> &simulator,
-                        const double          gamma,
-                        std::ostream         &report) const
+      write_band_report(const double gamma, std::ostream &report) const
       {
         using Layout = PropertyLayout<dim>;
         const unsigned int n_bins =
           static_cast<unsigned int>(std::ceil(height / bin - 1e-9));
         // Per bin: sum of V kappa, sum of V.
         std::vector<double> sums(2 * n_bins, 0.);
-        if (simulator.get_materials().max_n_state_variables() > 0)
-          for (const auto &point : simulator.get_particle_handler())
+        if (this->get_materials().max_n_state_variables() > 0)
+          for (const auto &point : this->get_particle_handler())
             {
               const auto       props = point.get_properties();
               const Point<dim> x =
-                simulator.get_grid().to_scene_frame(point.get_location());
+                this->get_grid().to_scene_frame(point.get_location());
               const double     s = (x[1] - base) / bin;
               if (!(s >= 0 && s < n_bins))
                 continue;
@@ -262,7 +260,7 @@ namespace MPM
               sums[2 * b] += props[Layout::volume] * props[Layout::state];
               sums[2 * b + 1] += props[Layout::volume];
             }
-        Utilities::MPI::sum(sums, simulator.get_mpi_communicator(), sums);
+        Utilities::MPI::sum(sums, this->get_mpi_communicator(), sums);
         std::vector<double> profile(n_bins, 0.);
         double              largest = 0, integral = 0;
         for (unsigned int b = 0; b < n_bins; ++b)
@@ -301,36 +299,36 @@ namespace MPM
       /// Volume-weighted mean (sigma_xy, sigma_xx, sigma_yy), scene frame,
       /// over the points in the averaging window.
       std::array<double, 3>
-      mean_stress(const Simulator<dim> &simulator) const
+      mean_stress() const
       {
         using Layout = PropertyLayout<dim>;
         std::vector<double> sums(4, 0.);
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
-            if (!in_window(simulator, point.get_location()))
+            if (!in_window(point.get_location()))
               continue;
             const auto   props  = point.get_properties();
             const double volume = props[Layout::volume];
-            const auto   sigma  = simulator.get_grid().to_scene_frame(
+            const auto   sigma  = this->get_grid().to_scene_frame(
               read_symmetric_tensor(&props[Layout::stress]));
             sums[0] += volume * sigma[0][1];
             sums[1] += volume * sigma[0][0];
             sums[2] += volume * sigma[1][1];
             sums[3] += volume;
           }
-        Utilities::MPI::sum(sums, simulator.get_mpi_communicator(), sums);
+        Utilities::MPI::sum(sums, this->get_mpi_communicator(), sums);
         const double v = std::max(sums[3], 1e-300);
         return {{sums[0] / v, sums[1] / v, sums[2] / v}};
       }
 
       /// Whether a point (mesh frame) lies in the averaging window.
       bool
-      in_window(const Simulator<dim> &simulator, const Point<dim> &x) const
+      in_window(const Point<dim> &x) const
       {
         if (window[0] == -std::numeric_limits<double>::infinity() &&
             window[1] == std::numeric_limits<double>::infinity())
           return true;
-        const double x_scene = simulator.get_grid().to_scene_frame(x)[0];
+        const double x_scene = this->get_grid().to_scene_frame(x)[0];
         return x_scene >= window[0] && x_scene <= window[1];
       }
 

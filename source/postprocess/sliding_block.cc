@@ -100,12 +100,12 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
-        law = bed_law(simulator);
+        law             = bed_law();
         const double mu = law->friction_coefficient();
-        g               = simulator.get_time_stepping().gravity.norm();
-        set_reference_gravity(simulator);
+        g               = this->get_time_stepping().gravity.norm();
+        set_reference_gravity();
         acceleration =
           std::max(0.,
                    g * (std::sin(theta) -
@@ -115,17 +115,17 @@ namespace MPM
         // the scene's only frictional boundary and a plane).
         Tensor<1, dim> normal;
         for (const auto &node :
-             simulator.get_boundary_conditions().constrained_nodes())
+             this->get_boundary_conditions().constrained_nodes())
           if (node.frictional)
             normal += node.normal;
-        normal = Utilities::MPI::sum(normal, simulator.get_mpi_communicator());
-        const Tensor<1, dim> gravity = simulator.get_time_stepping().gravity;
+        normal = Utilities::MPI::sum(normal, this->get_mpi_communicator());
+        const Tensor<1, dim> gravity = this->get_time_stepping().gravity;
         dip = normal.norm() > 0 ?
                 gravity - (gravity * normal) / normal.norm_square() * normal :
                 Tensor<1, dim>();
         if (dip.norm() > 0)
           dip /= dip.norm();
-        const auto s    = simulator.compute_statistics();
+        const auto s    = this->compute_statistics();
         x0              = s.centre_of_mass;
         t0              = s.time;
         std::ostringstream header;
@@ -154,17 +154,17 @@ namespace MPM
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
-        const auto   s        = simulator.compute_statistics();
+        const auto   s        = this->compute_statistics();
         const double t        = s.time - t0;
         const double v        = s.mean_velocity.norm();
         const double d        = (s.centre_of_mass - x0).norm();
         // A resumed run does not call initialize().
         if (law == nullptr)
           {
-            law = bed_law(simulator);
-            set_reference_gravity(simulator);
+            law = bed_law();
+            set_reference_gravity();
           }
         // A buoyant block: Coulomb's law on the buoyant weight is that of
         // a dry block under a gravity g' whose normal part is f times
@@ -210,7 +210,7 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         const bool sticks = acceleration == 0;
         report << report_header
@@ -261,7 +261,7 @@ namespace MPM
       /// f and the reference block's gravity and slope (theta and g for
       /// a dry block).
       void
-      set_reference_gravity(const Simulator<dim> &simulator)
+      set_reference_gravity()
       {
         f = 1;
         check_input(side_wall_resistance == 0 || !law->rate_dependent(),
@@ -272,11 +272,11 @@ namespace MPM
             check_input(!law->rate_dependent(),
                         "Postprocess/sliding block/Buoyant block = true "
                         "needs a Coulomb bed.");
-            const auto &water = simulator.get_pore_water();
+            const auto &water = this->get_pore_water();
             check_input(water.active(),
                         "Postprocess/sliding block/Buoyant block = true "
                         "needs a saturated material (Porosity > 0).");
-            const auto &materials = simulator.get_materials();
+            const auto &materials = this->get_materials();
             for (unsigned int m = 0; m < materials.size(); ++m)
               if (materials[m].porosity > 0)
                 {
@@ -302,10 +302,10 @@ namespace MPM
       /// The bed's basal law; a bed that is not frictional slides without
       /// friction.
       const BasalLaw<dim> *
-      bed_law(const Simulator<dim> &simulator) const
+      bed_law() const
       {
         const BasalLaw<dim> *bed_law =
-          simulator.get_boundary_conditions().basal_law(bed);
+          this->get_boundary_conditions().basal_law(bed);
         return bed_law != nullptr ? bed_law : &frictionless;
       }
 

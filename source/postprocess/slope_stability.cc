@@ -133,7 +133,7 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
         // The nearest point to each of crest and toe, over all ranks.
         const std::array<Point<dim>, 2> targets{{crest, toe}};
@@ -142,7 +142,7 @@ namespace MPM
             double                      best = std::numeric_limits<double>::max();
             types::particle_index       id   = 0;
             Point<dim>                  x;
-            for (const auto &point : simulator.get_particle_handler())
+            for (const auto &point : this->get_particle_handler())
               {
                 const double d = point.get_location().distance(targets[k]);
                 if (d < best)
@@ -155,8 +155,8 @@ namespace MPM
             std::vector<double> mine{best, static_cast<double>(id)};
             for (unsigned int d = 0; d < dim; ++d)
               mine.push_back(x[d]);
-            const auto all = Utilities::MPI::all_gather(
-              simulator.get_mpi_communicator(), mine);
+            const auto all =
+              Utilities::MPI::all_gather(this->get_mpi_communicator(), mine);
             const auto nearest = std::min_element(
               all.begin(), all.end(), [](const auto &a, const auto &b) {
                 return a[0] < b[0];
@@ -168,27 +168,27 @@ namespace MPM
             for (unsigned int d = 0; d < dim; ++d)
               initial[k][d] = (*nearest)[2 + d];
           }
-        record(simulator);
+        record();
         next_record = record_interval;
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool) override
+      execute(const bool) override
       {
-        if (simulator.get_time() >= next_record * (1 - 1e-12))
+        if (this->get_time() >= next_record * (1 - 1e-12))
           {
-            record(simulator);
+            record();
             next_record =
               record_interval *
-              (std::floor(simulator.get_time() / record_interval + 1e-9) + 1);
+              (std::floor(this->get_time() / record_interval + 1e-9) + 1);
           }
       }
 
       void
-      write_report(const Simulator<dim> &simulator, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
-        if (simulator.get_time() > last_record_time)
-          record(simulator);
+        if (this->get_time() > last_record_time)
+          record();
         const double height = crest[dim - 1] - toe[dim - 1];
         const double sense  = crest[0] > toe[0] ? -1. : 1.;
         report << "## slope stability: toe (" << toe << "), crest (" << crest
@@ -199,7 +199,7 @@ namespace MPM
                << table;
         // The crest's mean speed over the last rest_interval: from the
         // last record at least that long before the end.
-        const double now    = simulator.get_time();
+        const double now    = this->get_time();
         std::size_t  before = 0;
         for (std::size_t i = 0; i < crest_history.size(); ++i)
           if (crest_history[i].first <= now - rest_interval * (1 - 1e-9))
@@ -227,19 +227,19 @@ namespace MPM
 
         // The ground surface: the top of the points per bin of x.
         double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             x_min = std::min(x_min, point.get_location()[0]);
             x_max = std::max(x_max, point.get_location()[0]);
           }
-        const MPI_Comm comm = simulator.get_mpi_communicator();
+        const MPI_Comm comm = this->get_mpi_communicator();
         x_min               = Utilities::MPI::min(x_min, comm);
         x_max               = Utilities::MPI::max(x_max, comm);
         const double start  = bin_width * std::floor(x_min / bin_width);
         const long   n_bins =
           std::max(1L, static_cast<long>(std::ceil((x_max - start) / bin_width)));
         std::vector<double> surface(n_bins, -std::numeric_limits<double>::max());
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const double half =
               0.5 * std::pow(point.get_properties()[PropertyLayout<dim>::volume],
@@ -294,13 +294,13 @@ namespace MPM
     private:
       /// A row of the table at the current time (collective).
       void
-      record(const Simulator<dim> &simulator)
+      record()
       {
         using Layout = PropertyLayout<dim>;
         // Kinetic energy, then the two points' positions and whether this
         // rank has them.
         std::vector<double> sums(1 + 2 * (dim + 1), 0.);
-        for (const auto &point : simulator.get_particle_handler())
+        for (const auto &point : this->get_particle_handler())
           {
             const auto props = point.get_properties();
             sums[0] += 0.5 * props[Layout::mass] *
@@ -313,7 +313,7 @@ namespace MPM
                   sums[1 + k * (dim + 1) + dim] = 1;
                 }
           }
-        Utilities::MPI::sum(sums, simulator.get_mpi_communicator(), sums);
+        Utilities::MPI::sum(sums, this->get_mpi_communicator(), sums);
         std::array<double, 2> displacement{};
         for (unsigned int k = 0; k < 2; ++k)
           {
@@ -329,14 +329,13 @@ namespace MPM
               x[d] = sums[1 + k * (dim + 1) + d];
             displacement[k] = x.distance(initial[k]);
           }
-        const double factor =
-          simulator.get_materials().strength_reduction_factor();
+        const double factor = this->get_materials().strength_reduction_factor();
         std::ostringstream row;
-        row << std::setw(10) << simulator.get_time() << std::setw(12) << factor
+        row << std::setw(10) << this->get_time() << std::setw(12) << factor
             << std::setw(16) << displacement[0] << std::setw(16)
             << displacement[1] << std::setw(16) << sums[0] << '\n';
         table += row.str();
-        last_record_time        = simulator.get_time();
+        last_record_time          = this->get_time();
         last_crest_displacement = displacement[0];
         last_factor             = factor;
         Point<dim> crest_position = initial[0];
@@ -346,11 +345,11 @@ namespace MPM
         else
           for (unsigned int d = 0; d < dim; ++d)
             crest_position[d] = std::numeric_limits<double>::quiet_NaN();
-        crest_history.emplace_back(simulator.get_time(), crest_position);
+        crest_history.emplace_back(this->get_time(), crest_position);
         if (!passed_displacement && !(displacement[0] <= failure_displacement))
           {
             passed_displacement = true;
-            passing_time        = simulator.get_time();
+            passing_time        = this->get_time();
             passing_factor      = factor;
           }
       }

@@ -54,31 +54,31 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
         if (!bed.empty())
           {
             const BasalLaw<dim> *law =
-              simulator.get_boundary_conditions().basal_law(bed);
+              this->get_boundary_conditions().basal_law(bed);
             check_input(law != nullptr,
                         "Postprocess/travel angle/Bed boundary = '" + bed +
                           "' is not a frictional boundary of 'Boundary "
                           "conditions/List of boundaries'.");
             mu = law->friction_coefficient();
           }
-        const auto s = simulator.compute_statistics();
+        const auto s = this->compute_statistics();
         x0           = s.centre_of_mass;
-        head0        = velocity_head(simulator, s);
+        head0        = velocity_head(s);
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
         if (!output_step)
           return;
-        const auto s = simulator.compute_statistics();
-        const auto [drop, travel] = drop_and_travel(simulator, s);
-        const double head = velocity_head(simulator, s);
+        const auto s              = this->compute_statistics();
+        const auto [drop, travel] = drop_and_travel(s);
+        const double head         = velocity_head(s);
         last_ratio        = travel > 0 ? (drop + head0 - head) / travel : 0;
         last_drop         = drop;
         last_travel       = travel;
@@ -91,7 +91,7 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         report << "## travel angle: energy line of the centre of mass, "
                   "H / L = (drop + v0^2/2g - v^2/2g) / horizontal travel\n"
@@ -122,21 +122,19 @@ namespace MPM
 
     private:
       /// Kinetic energy over weight (m).
-      static double
-      velocity_head(const Simulator<dim>        &simulator,
-                    const GlobalStatistics<dim> &s)
+      double
+      velocity_head(const GlobalStatistics<dim> &s) const
       {
-        const double g = simulator.get_time_stepping().gravity.norm();
+        const double g = this->get_time_stepping().gravity.norm();
         return s.mass > 0 && g > 0 ? s.kinetic_energy / (s.mass * g) : 0;
       }
 
       /// The centre of mass's drop along gravity and its travel normal to
       /// it since the start.
       std::pair<double, double>
-      drop_and_travel(const Simulator<dim>        &simulator,
-                      const GlobalStatistics<dim> &s) const
+      drop_and_travel(const GlobalStatistics<dim> &s) const
       {
-        Tensor<1, dim> g_unit = simulator.get_time_stepping().gravity;
+        Tensor<1, dim> g_unit = this->get_time_stepping().gravity;
         check_input(g_unit.norm() > 0,
                     "Postprocess/List of postprocessors: 'travel angle' "
                     "needs gravity (Time stepping/Gravity).");

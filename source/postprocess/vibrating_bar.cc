@@ -47,18 +47,18 @@ namespace MPM
       }
 
       void
-      initialize(const Simulator<dim> &simulator) override
+      initialize() override
       {
         // With nu = 0 the P-wave speed sqrt((lambda + 2 mu) / rho) is the
         // bar speed sqrt(E / rho).
-        omega     = M_PI / (2 * length) * simulator.get_materials()[0].wave_speed();
+        omega = M_PI / (2 * length) * this->get_materials()[0].wave_speed();
         amplitude        = 2 * v0 / M_PI;
       }
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override
+      execute(const bool output_step) override
       {
-        const auto   s     = simulator.compute_statistics();
+        const auto   s     = this->compute_statistics();
         const double v     = s.mean_velocity[0];
         const double exact = amplitude * std::cos(omega * s.time);
         max_error = std::max(max_error, std::abs(v - exact) / amplitude);
@@ -78,7 +78,7 @@ namespace MPM
       }
 
       void
-      write_report(const Simulator<dim> &, std::ostream &report) override
+      write_report(std::ostream &report) override
       {
         const double period = 2 * M_PI / omega;
         report << "## vibrating bar: centre-of-mass velocity against "

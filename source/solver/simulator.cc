@@ -441,7 +441,7 @@ namespace MPM
     if (!checkpointing.resume())
       {
         for (auto &p : postprocessors)
-          p->initialize(*this);
+          p->initialize();
         write_output(true);
       }
     unsigned int steps_this_run = 0;
@@ -480,7 +480,7 @@ namespace MPM
           rest_criterion.at_rest() ||
           output_writer.output_due(time, time_step, time_stepping.end_time);
         for (auto &p : postprocessors)
-          p->execute(*this, output_step);
+          p->execute(output_step);
         write_output(rest_criterion.at_rest());
         ++steps_this_run;
         if (!finished() && checkpointing.due(steps_this_run, mpi_communicator))

@@ -11,9 +11,20 @@ namespace MPM
 
 
   template <int dim>
+  void
+  SimulatorAccess<dim>::initialize_simulator(Simulator<dim> &simulator)
+  {
+    Assert(this->simulator == nullptr || this->simulator == &simulator,
+           ExcMessage("This component already belongs to another run."));
+    this->simulator = &simulator;
+  }
+
+
+  template <int dim>
   const BackgroundGrid<dim> &
   SimulatorAccess<dim>::get_grid() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->grid;
   }
 
@@ -22,6 +33,7 @@ namespace MPM
   const CellDofTable<dim> &
   SimulatorAccess<dim>::get_cell_dofs() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->cell_dofs;
   }
 
@@ -30,6 +42,7 @@ namespace MPM
   const PeriodicNodeGroups &
   SimulatorAccess<dim>::get_periodic_nodes() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->periodic_nodes;
   }
 
@@ -38,6 +51,7 @@ namespace MPM
   Particles::ParticleHandler<dim> &
   SimulatorAccess<dim>::get_particle_handler() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->particle_handler;
   }
 
@@ -46,6 +60,7 @@ namespace MPM
   PointUpdate<dim> &
   SimulatorAccess<dim>::get_point_update() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->point_update;
   }
 
@@ -54,6 +69,7 @@ namespace MPM
   NodalFields &
   SimulatorAccess<dim>::get_nodal_fields() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->nodal;
   }
 
@@ -62,6 +78,7 @@ namespace MPM
   const VelocityTransfer<dim> &
   SimulatorAccess<dim>::get_transfer() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->transfer;
   }
 
@@ -70,6 +87,7 @@ namespace MPM
   const TimeSteppingParameters<dim> &
   SimulatorAccess<dim>::get_time_stepping() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->time_stepping;
   }
 
@@ -78,6 +96,7 @@ namespace MPM
   unsigned int
   SimulatorAccess<dim>::get_step() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->step;
   }
 
@@ -86,6 +105,7 @@ namespace MPM
   double
   SimulatorAccess<dim>::get_time_step() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->time_step;
   }
 
@@ -94,7 +114,82 @@ namespace MPM
   TimerOutput &
   SimulatorAccess<dim>::get_timer() const
   {
+    Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->timer;
+  }
+
+
+  template <int dim>
+  double
+  SimulatorAccess<dim>::get_time() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->time;
+  }
+
+
+  template <int dim>
+  const MaterialLibrary &
+  SimulatorAccess<dim>::get_materials() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->materials;
+  }
+
+
+  template <int dim>
+  const PoreWater<dim> &
+  SimulatorAccess<dim>::get_pore_water() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->pore_water;
+  }
+
+
+  template <int dim>
+  const BoundaryConditions<dim> &
+  SimulatorAccess<dim>::get_boundary_conditions() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->boundary_conditions;
+  }
+
+
+  template <int dim>
+  MPI_Comm
+  SimulatorAccess<dim>::get_mpi_communicator() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->mpi_communicator;
+  }
+
+
+  template <int dim>
+  const std::string &
+  SimulatorAccess<dim>::get_output_directory() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->output_writer.directory();
+  }
+
+
+  template <int dim>
+  GlobalStatistics<dim>
+  SimulatorAccess<dim>::compute_statistics() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->compute_statistics();
+  }
+
+
+  template <int dim>
+  std::pair<Tensor<1, 3>, double>
+  SimulatorAccess<dim>::spin_angular_momentum(
+    const Point<dim>     &centre,
+    const Tensor<1, dim> &mean_velocity) const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->spin_angular_momentum(centre, mean_velocity);
   }
 
 

@@ -109,7 +109,10 @@ namespace MPM
                                           "Postprocess/List of postprocessors");
     prm.leave_subsection();
     for (const auto &name : postprocessor_names)
-      postprocessors.push_back(Postprocessors::create<dim>(name, prm));
+      {
+        postprocessors.push_back(Postprocessors::create<dim>(name, prm));
+        postprocessors.back()->initialize_simulator(*this);
+      }
   }
 
 

@@ -33,7 +33,7 @@ namespace MPM
              << " steps; largest P-wave speed of those points at the end "
              << max_state_wave_speed << " m/s\n";
     for (auto &p : postprocessors)
-      p->write_report(*this, report);
+      p->write_report(report);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ofstream(output_writer.directory() + "report.txt") << report.str();

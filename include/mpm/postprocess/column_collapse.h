@@ -46,14 +46,13 @@ namespace MPM
       parse_parameters(ParameterHandler &prm) override;
 
       void
-      initialize(const Simulator<dim> &simulator) override;
+      initialize() override;
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override;
+      execute(const bool output_step) override;
 
       void
-      write_report(const Simulator<dim> &simulator,
-                   std::ostream         &report) override;
+      write_report(std::ostream &report) override;
 
       /**
        * The state accumulated over the run (checkpoints).
@@ -71,7 +70,7 @@ namespace MPM
        * Front, height and mean speed now (collective).
        */
       std::array<double, 3>
-      measure(const Simulator<dim> &simulator) const;
+      measure() const;
 
       /// L0 and H0 (initialize(): given, or measured at the start).
       double width = 0, initial_height = 0;

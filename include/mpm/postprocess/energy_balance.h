@@ -35,14 +35,13 @@ namespace MPM
       {}
 
       void
-      initialize(const Simulator<dim> &simulator) override;
+      initialize() override;
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override;
+      execute(const bool output_step) override;
 
       void
-      write_report(const Simulator<dim> &simulator,
-                   std::ostream         &report) override;
+      write_report(std::ostream &report) override;
 
       /**
        * The state accumulated over the run (checkpoints).

@@ -44,14 +44,13 @@ namespace MPM
       parse_parameters(ParameterHandler &prm) override;
 
       void
-      initialize(const Simulator<dim> &simulator) override;
+      initialize() override;
 
       void
-      execute(const Simulator<dim> &simulator, const bool output_step) override;
+      execute(const bool output_step) override;
 
       void
-      write_report(const Simulator<dim> &simulator,
-                   std::ostream         &report) override;
+      write_report(std::ostream &report) override;
 
       /**
        * Distance s along the bed and height h normal to it of the point
@@ -92,7 +91,7 @@ namespace MPM
       };
 
       Sample
-      sample(const Simulator<dim> &simulator) const;
+      sample() const;
 
       double theta = 0, radius = 0.1, bin_width = 0.01, stop_speed = 0.01,
              front_tolerance = 0.001;

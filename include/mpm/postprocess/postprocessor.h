@@ -10,6 +10,7 @@
 #include <boost/serialization/vector.hpp>
 
 #include <mpm/base/plugin_registry.h>
+#include <mpm/solver/simulator_access.h>
 
 #include <memory>
 #include <ostream>
@@ -18,9 +19,6 @@
 namespace MPM
 {
   using namespace dealii;
-
-  template <int dim>
-  class Simulator;
 
   /**
    * A postprocessor watches the run and compares it with a reference
@@ -31,9 +29,16 @@ namespace MPM
    *
    * Selected in "Postprocess/List of postprocessors"; each has a
    * subsection of its own for its parameters.
+   *
+   * It reaches the run through its SimulatorAccess (this->get_time(),
+   * this->get_particle_handler(), this->compute_statistics(), ...): the
+   * Simulator attaches it (initialize_simulator()) after creating it and
+   * before initialize(). Created without a run (a unit test reading a
+   * postprocessor's geometry), it has no simulator and must not ask for
+   * one.
    */
   template <int dim>
-  class Postprocessor
+  class Postprocessor : public SimulatorAccess<dim>
   {
   public:
     virtual ~Postprocessor() = default;
@@ -48,9 +53,8 @@ namespace MPM
      * Called once after the points were created, before the first step.
      */
     virtual void
-    initialize(const Simulator<dim> &simulator)
+    initialize()
     {
-      (void)simulator;
     }
 
     /**
@@ -58,13 +62,13 @@ namespace MPM
      * output time.
      */
     virtual void
-    execute(const Simulator<dim> &simulator, const bool output_step) = 0;
+    execute(const bool output_step) = 0;
 
     /**
      * Called at the end of the run; write the summary to @p report.
      */
     virtual void
-    write_report(const Simulator<dim> &simulator, std::ostream &report) = 0;
+    write_report(std::ostream &report) = 0;
 
     /**
      * Write what this postprocessor accumulated over the run (maxima,

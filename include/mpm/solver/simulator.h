@@ -112,77 +112,12 @@ namespace MPM
     void
     run();
 
+  private:
     /**
-     * @name Access for postprocessors and tests.
+     * @name Sums over the points, for the run and its components
+     * (SimulatorAccess).
      * @{
      */
-    const Particles::ParticleHandler<dim> &
-    get_particle_handler() const
-    {
-      return particle_handler;
-    }
-
-    const MaterialLibrary &
-    get_materials() const
-    {
-      return materials;
-    }
-
-    const BackgroundGrid<dim> &
-    get_grid() const
-    {
-      return grid;
-    }
-
-    /// The pore water of saturated materials (PoreWater::active()).
-    const PoreWater<dim> &
-    get_pore_water() const
-    {
-      return pore_water;
-    }
-
-    const BoundaryConditions<dim> &
-    get_boundary_conditions() const
-    {
-      return boundary_conditions;
-    }
-
-    const TimeSteppingParameters<dim> &
-    get_time_stepping() const
-    {
-      return time_stepping;
-    }
-
-    double
-    get_time() const
-    {
-      return time;
-    }
-
-    unsigned int
-    get_step() const
-    {
-      return step;
-    }
-
-    double
-    get_time_step() const
-    {
-      return time_step;
-    }
-
-    MPI_Comm
-    get_mpi_communicator() const
-    {
-      return mpi_communicator;
-    }
-
-    /// 'Output/Directory', ending in '/'.
-    const std::string &
-    get_output_directory() const
-    {
-      return output_writer.directory();
-    }
 
     /**
      * Sums over all points and ranks.
@@ -223,7 +158,6 @@ namespace MPM
                           const Tensor<1, dim> &mean_velocity) const;
     /** @} */
 
-  private:
     void
     setup();
 

@@ -5,6 +5,12 @@
 
 #include <deal.II/particles/particle_handler.h>
 
+#include <mpm/solver/statistics.h>
+
+#include <array>
+#include <string>
+#include <utility>
+
 namespace MPM
 {
   using namespace dealii;
@@ -21,6 +27,11 @@ namespace MPM
   struct TimeSteppingParameters;
   template <int dim>
   class VelocityTransfer;
+  template <int dim>
+  class PoreWater;
+  template <int dim>
+  class BoundaryConditions;
+  class MaterialLibrary;
   class NodalFields;
   class PeriodicNodeGroups;
 
@@ -43,6 +54,12 @@ namespace MPM
    * Mutable access is given to what a component of the step writes: the
    * points' properties (the particle-grid passes update them), the nodal
    * fields, the point update's findings and the timer.
+   *
+   * Two ways to attach, as in ASPECT: a component the Simulator creates
+   * during its set-up (the particle-grid weights) receives it in its
+   * constructor; a plugin that must also exist without a run (a
+   * postprocessor whose geometry a unit test reads) is default-constructed
+   * and attached by initialize_simulator() before its first use.
    */
   template <int dim>
   class SimulatorAccess
@@ -51,7 +68,15 @@ namespace MPM
     /// Attached to @p simulator, whose lifetime must cover this object's.
     explicit SimulatorAccess(Simulator<dim> &simulator);
 
+    /// Not attached: initialize_simulator() must come before any getter.
+    SimulatorAccess() = default;
+
     virtual ~SimulatorAccess() = default;
+
+    /// Attach to @p simulator (once), whose lifetime must cover this
+    /// object's.
+    void
+    initialize_simulator(Simulator<dim> &simulator);
 
     /// @name The mesh
     /// @{
@@ -102,13 +127,51 @@ namespace MPM
     double
     get_time_step() const;
 
+    /// The simulated time (s).
+    double
+    get_time() const;
+
     /// The run's timer sections (rank 0's wall times).
     TimerOutput &
     get_timer() const;
     /// @}
 
+    /// @name The scene
+    /// @{
+    /// The materials of 'Materials'.
+    const MaterialLibrary &
+    get_materials() const;
+
+    /// The pore water of saturated materials (PoreWater::active()).
+    const PoreWater<dim> &
+    get_pore_water() const;
+
+    /// The walls and their laws of 'Boundary conditions'.
+    const BoundaryConditions<dim> &
+    get_boundary_conditions() const;
+
+    MPI_Comm
+    get_mpi_communicator() const;
+
+    /// 'Output/Directory', ending in '/'.
+    const std::string &
+    get_output_directory() const;
+    /// @}
+
+    /// @name Sums over all points and ranks (collective)
+    /// @{
+    /// Simulator::compute_statistics().
+    GlobalStatistics<dim>
+    compute_statistics() const;
+
+    /// Simulator::spin_angular_momentum().
+    std::pair<Tensor<1, 3>, double>
+    spin_angular_momentum(const Point<dim>     &centre,
+                          const Tensor<1, dim> &mean_velocity) const;
+    /// @}
+
   private:
-    Simulator<dim> *const simulator;
+    Simulator<dim> *simulator = nullptr;
   };
 } // namespace MPM
 
