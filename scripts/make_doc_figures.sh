@@ -68,10 +68,10 @@
 #                     the points' excess pore pressure at T = 0.05 ... 1
 #                     against Terzaghi's series, scripts/plot_pore_water.py
 #                     (doc/pore_water.md). 10 s.
-#   dam_break         doc/dam_break.png: prm/dam_break.prm on a / 10 and
-#                     a / 20 cells, the surge front against Martin and
-#                     Moyce, scripts/plot_pore_water.py (doc/pore_water.md).
-#                     30 s.
+#   dam_break         doc/dam_break.png: prm/dam_break.prm on a / 10,
+#                     a / 20 and a / 40 cells, the surge front against
+#                     Martin and Moyce, scripts/plot_pore_water.py
+#                     (doc/pore_water.md). 7 min.
 #   slope_pore_pressure
 #                     doc/infinite_slope_pore_pressure.png (and
 #                     slope_stability_pore_pressure_r0/1/2.csv): the factor
@@ -195,7 +195,7 @@ for f in "${figures[@]}"; do
       "$python" "$scripts/plot_pore_water.py" consolidation \
         "$doc/terzaghi_consolidation.png" consolidation ;;
     dam_break)
-      for r in 0 1; do
+      for r in 0 1 2; do
         "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/dam_break.prm" \
           --set "Mesh/Global refinements=$r" --set "Output/Write particles=false" \
           --set "Output/Directory=dam-break-r$r" > dam-break-r$r.log
@@ -203,7 +203,8 @@ for f in "${figures[@]}"; do
       grep '^largest' dam-break-r0/report.txt
       "$python" "$scripts/plot_pore_water.py" dam_break "$doc/dam_break.png" \
         "dam-break-r0/report.txt:a / 10 cells (the shipped file)" \
-        "dam-break-r1/report.txt:a / 20 cells" ;;
+        "dam-break-r1/report.txt:a / 20 cells" \
+        "dam-break-r2/report.txt:a / 40 cells" ;;
     slope_pore_pressure)
       prm="$MPM_ROOT/prm/infinite_slope_pore_pressure.prm"
       MPM_SRM_NAME=pore_pressure_r0 "$scripts/strength_reduction.sh" "$prm" 1.0 1.2 0.005 | tail -1
