@@ -242,14 +242,14 @@ namespace MPM
         const auto  &water  = this->get_pore_water();
         const double gamma_w =
           water.density() * this->get_time_stepping().gravity.norm();
+        const auto           &grid = this->get_grid();
         std::array<double, 5> sums{};
         for (const auto &point : this->get_particle_handler())
           {
             const auto props = point.get_properties();
             if (props[water.porosity_slot()] == 0)
               continue;
-            const double z =
-              this->get_grid().to_scene_frame(point.get_location())[dim - 1];
+            const double z = grid.to_scene_frame(point.get_location())[dim - 1];
             const double V = props[Layout::volume];
             const double u =
               props[water.pressure_slot()] - gamma_w * (top - z);

@@ -67,11 +67,11 @@ namespace MPM
         const double T = this->get_time() * std::sqrt(2 * g / width);
         if (T < reference[fronts.size()][0])
           return;
-        double front = -std::numeric_limits<double>::max();
+        const auto &grid  = this->get_grid();
+        double      front = -std::numeric_limits<double>::max();
         for (const auto &point : this->get_particle_handler())
           {
-            const double x =
-              this->get_grid().to_scene_frame(point.get_location())[0];
+            const double x = grid.to_scene_frame(point.get_location())[0];
             const double V =
               point.get_properties()[PropertyLayout<dim>::volume];
             front = std::max(front, x + 0.5 * std::pow(V, 1. / dim));

@@ -45,6 +45,7 @@ namespace MPM
         double least = std::numeric_limits<double>::max();
         double largest = -std::numeric_limits<double>::max();
         std::vector<double>   pressures;
+        const auto           &grid = this->get_grid();
         if (water.active())
           for (const auto &point : this->get_particle_handler())
             {
@@ -53,7 +54,7 @@ namespace MPM
                 continue;
               const double V = props[Layout::volume];
               const double p = props[water.pressure_slot()];
-              const auto   stress = this->get_grid().to_scene_frame(
+              const auto   stress = grid.to_scene_frame(
                 read_symmetric_tensor(&props[Layout::stress]));
               sums[0] += V * p;
               sums[1] += V;

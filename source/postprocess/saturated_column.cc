@@ -94,6 +94,7 @@ namespace MPM
         std::array<double, 6> m{};
         // Seepage: sums of V, V n (v_w - v_s)_y and V k / mu.
         std::array<double, 3> flux{};
+        const auto           &grid = this->get_grid();
         for (const auto &point : this->get_particle_handler())
           {
             const auto props = point.get_properties();
@@ -102,8 +103,7 @@ namespace MPM
               continue;
             const auto &material =
               mats[static_cast<unsigned int>(props[Layout::material_id])];
-            const double y =
-              this->get_grid().to_scene_frame(point.get_location())[dim - 1];
+            const double y = grid.to_scene_frame(point.get_location())[dim - 1];
             const double p_exact =
               rho_w * g * (water_table - y) +
               (excess == 0 ? 0. : excess * (surface - y) / (surface - base));

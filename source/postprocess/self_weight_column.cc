@@ -75,12 +75,12 @@ namespace MPM
         const unsigned int  n_layers = std::ceil(height / base_layer - 1e-9);
         std::vector<double> sums(3 * n_layers + 4, 0.);
         double              rho_ref = 0, modulus = 0;
+        const auto         &materials = this->get_materials();
         for (const auto &point : this->get_particle_handler())
           {
             const auto      props = point.get_properties();
             const Material &material =
-              this->get_materials()[static_cast<unsigned int>(
-                props[Layout::material_id])];
+              materials[static_cast<unsigned int>(props[Layout::material_id])];
             rho_ref = material.density;
             modulus = material.model->p_wave_modulus();
           }

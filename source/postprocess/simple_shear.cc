@@ -180,7 +180,7 @@ namespace MPM
         std::array<double, 2> worst{{0., 0.}};
         for (const auto &point : this->get_particle_handler())
           {
-            if (!in_window(point.get_location()))
+            if (!in_window(grid, point.get_location()))
               continue;
             const auto props = point.get_properties();
             const auto sigma = grid.to_scene_frame(
@@ -247,12 +247,12 @@ namespace MPM
           static_cast<unsigned int>(std::ceil(height / bin - 1e-9));
         // Per bin: sum of V kappa, sum of V.
         std::vector<double> sums(2 * n_bins, 0.);
+        const auto         &grid = this->get_grid();
         if (this->get_materials().max_n_state_variables() > 0)
           for (const auto &point : this->get_particle_handler())
             {
               const auto       props = point.get_properties();
-              const Point<dim> x =
-                this->get_grid().to_scene_frame(point.get_location());
+              const Point<dim> x = grid.to_scene_frame(point.get_location());
               const double     s = (x[1] - base) / bin;
               if (!(s >= 0 && s < n_bins))
                 continue;
@@ -303,13 +303,14 @@ namespace MPM
       {
         using Layout = PropertyLayout<dim>;
         std::vector<double> sums(4, 0.);
+        const auto         &grid = this->get_grid();
         for (const auto &point : this->get_particle_handler())
           {
-            if (!in_window(point.get_location()))
+            if (!in_window(grid, point.get_location()))
               continue;
             const auto   props  = point.get_properties();
             const double volume = props[Layout::volume];
-            const auto   sigma  = this->get_grid().to_scene_frame(
+            const auto   sigma  = grid.to_scene_frame(
               read_symmetric_tensor(&props[Layout::stress]));
             sums[0] += volume * sigma[0][1];
             sums[1] += volume * sigma[0][0];
@@ -321,14 +322,15 @@ namespace MPM
         return {{sums[0] / v, sums[1] / v, sums[2] / v}};
       }
 
-      /// Whether a point (mesh frame) lies in the averaging window.
+      /// Whether a point (mesh frame of @p grid) lies in the averaging
+      /// window.
       bool
-      in_window(const Point<dim> &x) const
+      in_window(const BackgroundGrid<dim> &grid, const Point<dim> &x) const
       {
         if (window[0] == -std::numeric_limits<double>::infinity() &&
             window[1] == std::numeric_limits<double>::infinity())
           return true;
-        const double x_scene = this->get_grid().to_scene_frame(x)[0];
+        const double x_scene = grid.to_scene_frame(x)[0];
         return x_scene >= window[0] && x_scene <= window[1];
       }
 
