@@ -52,7 +52,8 @@ namespace MPM
     boundary_conditions.set_gravity(time_stepping.gravity);
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
-    pore_water.set_skeleton_transfer(transfer.apic() != nullptr);
+    pore_water.set_skeleton_transfer(
+      transfer.scheme().carries_affine_velocity());
     if (pore_water.active() &&
         boundary_conditions.has_frictional_wall_without_memory() &&
         (pore_water.affine_transfer() ||
@@ -116,15 +117,15 @@ namespace MPM
         setup_nodal_fields();
       }
     else
-      for (const auto &region :
-           point_generator.generate(grid,
-                                    materials,
-                                    time_stepping.scene_gravity,
-                                    particle_handler,
-                                    transfer.apic() != nullptr ?
-                                      transfer_slot :
-                                      numbers::invalid_unsigned_int,
-                                    pore_water.initial_state()))
+      for (const auto &region : point_generator.generate(
+             grid,
+             materials,
+             time_stepping.scene_gravity,
+             particle_handler,
+             transfer.scheme().carries_affine_velocity() ?
+               transfer_slot :
+               numbers::invalid_unsigned_int,
+             pore_water.initial_state()))
         pcout << "Region '" << region.name << "': " << region.n_points
               << " material points, volume " << region.volume
               << (dim == 2 ? " m^2" : " m^3") << ", mass " << region.mass
@@ -383,7 +384,7 @@ namespace MPM
   bool
   Simulator<dim>::has_affine_transfer() const
   {
-    return transfer.apic() != nullptr;
+    return transfer.scheme().carries_affine_velocity();
   }
 
 

@@ -304,7 +304,7 @@ namespace MPM
         c = cross_product_3d(a, b);
       return c;
     };
-    const bool   affine = transfer.apic() != nullptr;
+    const bool   affine = transfer.scheme().carries_affine_velocity();
     Tensor<1, 3> L;
     double       scale = 0;
     for (const auto &point : particle_handler)
@@ -319,7 +319,7 @@ namespace MPM
         // translation, whose spin is zero.
         scale += m * r.norm() * (v + mean_velocity).norm();
         if (affine)
-          L += m * Apic<dim>::affine_angular_momentum(
+          L += m * transfer.scheme().affine_angular_momentum_of_point(
                      &props[transfer_slot]);
       }
     return {Utilities::MPI::sum(L, mpi_communicator),

@@ -90,7 +90,7 @@ namespace MPM
     transfer.parse_parameters(prm);
     transfer.scheme().add_nodal_fields(nodal);
     weights = ParticleGridWeights<dim>::create(prm, *this);
-    if (transfer.apic() != nullptr &&
+    if (transfer.scheme().carries_affine_velocity() &&
         !time_stepping.step_scheme->updates_stress_from_remap() &&
         !weights->second_moment_bounded_below())
       pcout << "Warning: 'Transfer/Scheme = apic' with 'Time stepping/Update "

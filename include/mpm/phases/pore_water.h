@@ -168,14 +168,15 @@ namespace MPM
 
     /**
      * Whether the water's velocity goes by APIC's affine transfer: 'Water
-     * velocity transfer = affine' and @p apic, the skeleton's transfer is
-     * APIC (whose offsets about each point's affine centre the passes
-     * hand over). Else the water takes the skeleton's FLIP share.
+     * velocity transfer = affine' and @p affine_skeleton, the skeleton's
+     * transfer carries an affine velocity (APIC, whose offsets about each
+     * point's affine centre the passes hand over). Else the water takes the
+     * skeleton's FLIP share.
      */
     void
-    set_skeleton_transfer(const bool apic)
+    set_skeleton_transfer(const bool affine_skeleton)
     {
-      affine = affine_requested && apic;
+      affine = affine_requested && affine_skeleton;
     }
 
     bool

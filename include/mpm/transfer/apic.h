@@ -53,6 +53,18 @@ namespace MPM
     point_property_names() const override;
 
     bool
+    carries_affine_velocity() const override
+    {
+      return true;
+    }
+
+    Tensor<1, 3>
+    affine_angular_momentum_of_point(const double *slots) const override
+    {
+      return affine_angular_momentum(slots);
+    }
+
+    bool
     initializes_points() const override
     {
       return true;

@@ -406,7 +406,7 @@ namespace MPM
     bool
     affine() const
     {
-      return this->get_transfer().apic() != nullptr;
+      return this->get_transfer().scheme().carries_affine_velocity();
     }
 
     /// The first slot of the transfer scheme's point data (APIC's C_p).

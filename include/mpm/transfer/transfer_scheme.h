@@ -2,6 +2,7 @@
 #define mpm_transfer_transfer_scheme_h
 
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
 
 #include <mpm/base/plugin_registry.h>
 
@@ -106,6 +107,33 @@ namespace MPM
       (void)weights;
       (void)boundary_conditions;
       (void)nodal;
+    }
+
+    /**
+     * Whether the points carry an affine velocity field v_p + C_p (x - x_p)
+     * with C_p (row-major) in the scheme's first dim * dim slots (APIC).
+     * What the rest of the code asks of a scheme that does: the point
+     * generator writes each point's initial velocity gradient there, MUSL
+     * updates the stress from the remapped velocity, the pore water may
+     * follow the same affine transfer, and the run's angular momentum adds
+     * affine_angular_momentum().
+     */
+    virtual bool
+    carries_affine_velocity() const
+    {
+      return false;
+    }
+
+    /**
+     * The angular momentum per unit mass of what a point carries beyond
+     * its velocity (APIC: its affine part), read from the scheme's slots
+     * @p slots; only called if carries_affine_velocity().
+     */
+    virtual Tensor<1, 3>
+    affine_angular_momentum_of_point(const double *slots) const
+    {
+      (void)slots;
+      return Tensor<1, 3>();
     }
 
     /// Whether initialize_points() does anything (then the Simulator

@@ -43,8 +43,9 @@ namespace MPM
       return *transfer_scheme;
     }
 
-    /// The scheme if it is APIC (points carry an affine velocity field,
-    /// which the particle-grid passes map and fit), else nullptr.
+    /// The scheme if it is APIC, else nullptr: for the particle-grid
+    /// weights and passes, which do APIC's arithmetic on their entries.
+    /// The rest of the code asks scheme().carries_affine_velocity().
     const Apic<dim> *
     apic() const
     {
