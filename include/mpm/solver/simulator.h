@@ -158,8 +158,31 @@ namespace MPM
                           const Tensor<1, dim> &mean_velocity) const;
     /** @} */
 
+    /// The run's set-up (simulator_setup.cc): setup_scene(),
+    /// setup_nodal_fields(), setup_point_properties(), create_points(),
+    /// then the first statistics and the output files.
     void
     setup();
+
+    /// The mesh, gravity, the walls and the phases, with the checks of
+    /// their combination.
+    void
+    setup_scene();
+
+    /// The points' property slots (fixed, material state, the transfer
+    /// scheme's, the weights', the pore water's) and the particle handler
+    /// that holds them.
+    void
+    setup_point_properties();
+
+    /**
+     * The material points: generated from 'Material points', or read from
+     * the checkpoint on a resumed run (returns the checkpoint's serialized
+     * state, else an empty string); then what the first step needs of them
+     * (pore water, balanced partition, the transfer scheme's slots).
+     */
+    std::string
+    create_points();
 
     /**
      * Everything that depends on the partition of the mesh among ranks:
