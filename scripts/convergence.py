@@ -37,10 +37,12 @@ Usage:
   scripts/convergence.py CASE.prm [MORE.prm ...] [--levels 3]
       [--set "Section/Name=value" ...] [--threads N] [--mpirun N]
       [--out DIR] [--reuse] [--only REGEX] [--mpm EXECUTABLE]
+      [--time-step-check] [--points-per-cell-check]
 Examples:
   scripts/convergence.py prm/column_collapse.prm --out output-conv-collapse
   scripts/convergence.py prm/flume_usgs.prm --set "Time stepping/End time=1"
   scripts/convergence.py prm/slope_runout.prm --levels 4 --reuse
+  scripts/convergence.py prm/column_collapse.prm --points-per-cell-check
 (doc/convergence_command.md)."""
 import argparse
 import csv
@@ -80,6 +82,13 @@ def parse_arguments(argv):
                              "number, or half a fixed 'Time step') and give each quantity's "
                              "value there and its change: the levels halve the time step with "
                              "the cells, and a result may depend on the step as much")
+    parser.add_argument("--points-per-cell-check", action="store_true",
+                        help="run the finest level again with one more point per cell direction "
+                             "in every region ('Points per cell' n -> n + 1) and give each "
+                             "quantity's value there and its change: the levels keep the points "
+                             "per cell, and a result may depend on them as much (a collapse's "
+                             "final height moved by 12 %% from 2 x 2 to 3 x 3, "
+                             "doc/column_collapse.md)")
     args = parser.parse_args(argv)
     if args.levels < 2:
         parser.error("--levels must be at least 2")
@@ -139,6 +148,19 @@ def half_time_step(parameters):
     if name not in parameters:
         sys.exit(f"convergence.py: no '{name}' in the parameters (--time-step-check)")
     return f"{name}={float(parameters[name]) / 2!r}"
+
+
+def more_points_per_cell(parameters):
+    """The settings that seed one more point per cell direction in every
+    region of 'Material points' ('Points per cell' n -> n + 1)."""
+    settings = []
+    for name, value in parameters.items():
+        if re.fullmatch(r"Material points/[^/]+/Points per cell", name):
+            settings.append(f"{name}={int(value) + 1}")
+    if not settings:
+        sys.exit("convergence.py: no 'Material points/<region>/Points per cell' in the "
+                 "parameters (--points-per-cell-check)")
+    return settings
 
 
 def run_level(args, out, refinements, extra=(), suffix=""):
@@ -287,16 +309,28 @@ def main(argv):
     print(f"Mesh convergence of {' '.join(args.prm)}: 'Global refinements' {levels[0]}..{levels[-1]} "
           f"(cell size h / 2^k, k = 0..{args.levels - 1}), study in {out}", flush=True)
     directories = [run_level(args, out, k) for k in levels]
-    # The finest mesh again with half the time step: the levels halve the
-    # time step with the cells, and a quantity may depend on the step as
-    # much as on the mesh (doc/convergence_command.md, "The time step").
-    half_dt = None
+    # The finest mesh again with half the time step, or with more points
+    # per cell: the levels halve the time step with the cells and keep the
+    # points per cell, and a quantity may depend on either as much as on
+    # the mesh (doc/convergence_command.md, "The time step" and "The points
+    # per cell"). Each check: its settings, the columns of the table and of
+    # the CSV, and the quantities of its run.
+    checks = []
     if args.time_step_check:
-        setting = half_time_step(parameters)
-        directory = run_level(args, out, levels[-1], ["--set", setting], "-half-time-step")
-        half_dt = report_quantities(os.path.join(directory, "report.txt"))
-        half_dt.update(statistics_quantities(directory))
-        half_dt_cost = cost(directory + ".log")
+        checks.append({"settings": [half_time_step(parameters)], "suffix": "-half-time-step",
+                       "what": "at half the time step", "column": "dt/2",
+                       "csv": ["finest_half_time_step", "change_half_time_step"]})
+    if args.points_per_cell_check:
+        checks.append({"settings": more_points_per_cell(parameters),
+                       "suffix": "-more-points-per-cell",
+                       "what": "with one more point per cell direction", "column": "n+1",
+                       "csv": ["finest_more_points_per_cell", "change_more_points_per_cell"]})
+    for check in checks:
+        extra = [word for setting in check["settings"] for word in ("--set", setting)]
+        directory = run_level(args, out, levels[-1], extra, check["suffix"])
+        check["quantities"] = report_quantities(os.path.join(directory, "report.txt"))
+        check["quantities"].update(statistics_quantities(directory))
+        check["cost"] = cost(directory + ".log")
 
     per_level = []
     costs = []
@@ -306,7 +340,7 @@ def main(argv):
         per_level.append(q)
         costs.append(cost(directory + ".log"))
     names = [n for n in per_level[-1] if all(n in q for q in per_level)
-             and (half_dt is None or n in half_dt)]
+             and all(n in check["quantities"] for check in checks)]
     if args.only:
         names = [n for n in names if re.search(args.only, n)]
     if not names:
@@ -316,11 +350,13 @@ def main(argv):
     for name in names:
         values = [q[name] for q in per_level]
         r = classify(values)
-        if half_dt is not None:
-            # The finest level's value at half the time step, and the change.
-            r["half_dt"] = half_dt[name]
-            r["change_half_dt"] = abs(half_dt[name] - values[-1]) / abs(values[-1]) \
-                if values[-1] != 0 else (0.0 if half_dt[name] == 0 else None)
+        # Each check's value on the finest level, and its change from it.
+        r["checks"] = []
+        for check in checks:
+            value = check["quantities"][name]
+            change = abs(value - values[-1]) / abs(values[-1]) \
+                if values[-1] != 0 else (0.0 if value == 0 else None)
+            r["checks"].append((value, change))
         rows.append((name, values, r))
 
     lines = []
@@ -334,12 +370,16 @@ def main(argv):
                          f"{c['steps_wall']:.4g} s of steps")
     header = [f"h/{2 ** (k - first)}" for k in levels] + \
         ["status", "order p", "extrapolated", "GCI fine", "change fine"]
-    if half_dt is not None:
-        lines.append(f"# finest level again at half the time step ({half_time_step(parameters)}): "
-                     "its value and the change from the finest level"
-                     + (f"; {half_dt_cost['steps']} steps, {half_dt_cost['steps_wall']:.4g} s of steps"
-                        if half_dt_cost else ""))
-        header += ["finest, dt/2", "change dt/2"]
+    for check in checks:
+        c = check["cost"]
+        spent = ""
+        if c:
+            spent = f"; {c['steps']} steps, {c['steps_wall']:.4g} s of steps"
+            if c["points"] != costs[-1].get("points"):
+                spent = f"; {c['points']} points, " + spent[2:]
+        lines.append(f"# finest level again {check['what']} ({', '.join(check['settings'])}): "
+                     "its value and the change from the finest level" + spent)
+        header += [f"finest, {check['column']}", f"change {check['column']}"]
     width = max(len(n) for n in names)
     lines.append(f"{'quantity':<{width}}  " + "  ".join(f"{h:>12}" for h in header))
     for name, values, r in rows:
@@ -347,9 +387,8 @@ def main(argv):
             r["status"], fmt(r["order"], "{:.3g}"), fmt(r["extrapolated"]),
             fmt(None if r["gci"] is None else 100 * r["gci"], "{:.3g} %"),
             fmt(None if r["change"] is None else 100 * r["change"], "{:.3g} %")]
-        if half_dt is not None:
-            cells += [fmt(r["half_dt"]),
-                      fmt(None if r["change_half_dt"] is None else 100 * r["change_half_dt"], "{:.3g} %")]
+        for value, change in r["checks"]:
+            cells += [fmt(value), fmt(None if change is None else 100 * change, "{:.3g} %")]
         lines.append(f"{name:<{width}}  " + "  ".join(f"{c:>12}" for c in cells))
     table = "\n".join(lines)
     print(table)
@@ -358,14 +397,14 @@ def main(argv):
 
     with open(os.path.join(out, "convergence.csv"), "w", newline="") as stream:
         writer = csv.writer(stream)
-        extra = ["finest_half_time_step", "change_half_time_step"] if half_dt is not None else []
+        extra = [column for check in checks for column in check["csv"]]
         writer.writerow(["quantity"] + [f"level_{k}" for k in levels] +
                         ["status", "order", "extrapolated", "gci_fine", "change_fine", "spread"] + extra)
-        keys = ("order", "extrapolated", "gci", "change", "spread") + \
-            (("half_dt", "change_half_dt") if half_dt is not None else ())
+        keys = ("order", "extrapolated", "gci", "change", "spread")
         for name, values, r in rows:
             writer.writerow([name] + [repr(v) for v in values] +
-                            [r["status"]] + [("" if r[k] is None else repr(r[k])) for k in keys])
+                            [r["status"]] + [("" if r[k] is None else repr(r[k])) for k in keys] +
+                            [("" if x is None else repr(x)) for pair in r["checks"] for x in pair])
         writer.writerow(["cost: points"] + [c.get("points", "") for c in costs])
         writer.writerow(["cost: steps"] + [c.get("steps", "") for c in costs])
         writer.writerow(["cost: wall time of the steps (s)"] + [c.get("steps_wall", "") for c in costs])
