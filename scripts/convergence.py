@@ -372,11 +372,13 @@ def main(argv):
         ["status", "order p", "extrapolated", "GCI fine", "change fine"]
     for check in checks:
         c = check["cost"]
-        spent = ""
+        parts = []
         if c:
-            spent = f"; {c['steps']} steps, {c['steps_wall']:.4g} s of steps"
+            # The points only where the check changes them.
             if c["points"] != costs[-1].get("points"):
-                spent = f"; {c['points']} points, " + spent[2:]
+                parts.append(f"{c['points']} points")
+            parts += [f"{c['steps']} steps", f"{c['steps_wall']:.4g} s of steps"]
+        spent = "; " + ", ".join(parts) if parts else ""
         lines.append(f"# finest level again {check['what']} ({', '.join(check['settings'])}): "
                      "its value and the change from the finest level" + spent)
         header += [f"finest, {check['column']}", f"change {check['column']}"]
