@@ -771,7 +771,8 @@ namespace MPM
             D = PointDomains<dim>::initial_domain(
               grid.cell_vertices(cell),
               point->get_reference_location(),
-              props[Layout::volume]);
+              props[Layout::volume],
+              point_domains.initial_domain_size());
             PointDomains<dim>::write(D, props + domain_slot);
             props[domain_slot + PointDomains<dim>::scale_slot] = 1;
           }

@@ -21,6 +21,18 @@ namespace MPM
         "it is reset to that square, turned by the domain's rotation. "
         "Large flows stretch domains into needles many cells long "
         "otherwise.");
+      prm.declare_entry(
+        "CPDI domain size",
+        "1",
+        Patterns::Double(0.01, 2),
+        "'cpdi' only: the edges of each point's initial domain over those "
+        "of the domains that tile the material (the point's sub-cell, of "
+        "the point's volume). 1 is CPDI; above 1 the domains overlap and "
+        "average the mesh functions over more than the point's own "
+        "volume, below 1 they leave gaps. A diagnostic: it separates the "
+        "width over which the weights are smoothed from the number of "
+        "points per cell (doc/column_collapse.md, the bullet on the "
+        "points per cell).");
     }
     prm.leave_subsection();
   }
@@ -32,6 +44,7 @@ namespace MPM
   {
     prm.enter_subsection("Transfer");
     stretch_limit = prm.get_double("CPDI stretch limit");
+    domain_size   = prm.get_double("CPDI domain size");
     prm.leave_subsection();
   }
 
@@ -54,7 +67,8 @@ namespace MPM
   PointDomains<dim>::initial_domain(
     const std::array<Point<dim>, n_corners> &vertices,
     const Point<dim>                        &xi,
-    const double                             volume)
+    const double                             volume,
+    const double                             size)
   {
     // det J at xi, from the map's derivatives.
     Tensor<2, dim> J;
@@ -69,7 +83,7 @@ namespace MPM
             J[a][e] += g * (vertices[i][a] - vertices[0][a]);
         }
     const double half =
-      0.5 * std::pow(volume / determinant(J), 1. / dim);
+      0.5 * size * std::pow(volume / determinant(J), 1. / dim);
     const Point<dim> x = map_unit_to_real<dim>(vertices, xi);
     Offsets          D;
     for (unsigned int c = 0; c < n_corners; ++c)

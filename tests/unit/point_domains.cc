@@ -175,6 +175,26 @@ namespace unit_point_domains
         corner_error < 1e-12,
         "initial domain of a sub-cell centre is the sub-cell (distorted cell)");
       check_domain<2>("initial domain in a distorted cell", corners, false);
+      // 'CPDI domain size' 1.5: the image of the reference square 1.5
+      // times as wide about the point, xi +- 1.5 / 4.
+      {
+        const auto D_large =
+          PointDomains<2>::initial_domain(vertices, xi, V, 1.5);
+        double large_error = 0;
+        for (unsigned int c = 0; c < 4; ++c)
+          {
+            const Point<2> expected = map(xi[0] + ((c & 1) ? 0.375 : -0.375),
+                                          xi[1] + ((c & 2) ? 0.375 : -0.375));
+            large_error =
+              std::max(large_error, (x_p + D_large[c] - expected).norm());
+          }
+        std::cout << "    domain size 1.5: corners - those of the reference "
+                     "square 1.5 times as wide: "
+                  << flush_to_zero(large_error) << '\n';
+        check(large_error < 1e-12,
+              "'CPDI domain size' scales the reference square about the "
+              "point");
+      }
       Tensor<2, 2> R = PointDomains<2>::affine_part(D);
 
       ParameterHandler prm;

@@ -95,11 +95,22 @@ namespace MPM
      * tile the material exactly, also on a distorted mesh, where
      * parallelograms from the Jacobian at the point would overlap and
      * leave gaps by a fixed fraction of a cell at every refinement.
+     * With 'CPDI domain size' s != 1 (@p size) the square's edges are s
+     * times as long: the domains overlap (s > 1) or leave gaps (s < 1).
      */
     static Offsets
     initial_domain(const std::array<Point<dim>, n_corners> &vertices,
                    const Point<dim>                        &xi,
-                   const double                             volume);
+                   const double                             volume,
+                   const double                             size = 1);
+
+    /// 'CPDI domain size': the initial domains' edges over those of the
+    /// domains that tile the material.
+    double
+    initial_domain_size() const
+    {
+      return domain_size;
+    }
 
     /// The signs s_c of corner @p c (bit d of c is the sign of s_d).
     static Tensor<1, dim>
@@ -235,6 +246,7 @@ namespace MPM
 
   private:
     double          stretch_limit  = 2;
+    double          domain_size    = 1;
   };
 } // namespace MPM
 
