@@ -48,8 +48,17 @@ namespace MPM
 
 
   template <int dim>
-  Particles::ParticleHandler<dim> &
+  const Particles::ParticleHandler<dim> &
   SimulatorAccess<dim>::get_particle_handler() const
+  {
+    Assert(simulator != nullptr, ExcNotInitialized());
+    return simulator->particle_handler;
+  }
+
+
+  template <int dim>
+  Particles::ParticleHandler<dim> &
+  SimulatorAccess<dim>::get_mutable_particle_handler() const
   {
     Assert(simulator != nullptr, ExcNotInitialized());
     return simulator->particle_handler;

@@ -710,7 +710,7 @@ namespace MPM
   void
   CpdiWeights<dim>::collect_point_cells()
   {
-    auto &particle_handler = this->get_particle_handler();
+    auto &particle_handler = this->get_mutable_particle_handler();
     this->point_cell_begin.clear();
     this->point_cell_size.clear();
     point_cells.clear();
@@ -863,7 +863,7 @@ namespace MPM
   double
   CpdiWeights<dim>::prepare()
   {
-    auto                  &particle_handler = this->get_particle_handler();
+    auto &particle_handler = this->get_mutable_particle_handler();
     const auto            &grid             = this->get_grid();
     auto       &shape_functions  = this->shape_functions;
     TimerOutput::Scope     t(this->get_timer(), "shape functions");

@@ -22,7 +22,7 @@ namespace MPM
   double
   LinearWeights<dim>::prepare()
   {
-    auto              &particle_handler = this->get_particle_handler();
+    auto              &particle_handler = this->get_mutable_particle_handler();
     TimerOutput::Scope t(this->get_timer(), "shape functions");
     this->clear_active_cells();
     this->shape_functions.resize(particle_handler.n_locally_owned_particles());

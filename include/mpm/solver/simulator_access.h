@@ -52,7 +52,9 @@ namespace MPM
    * A pass that reads a value per point reads it once, before its loop.
    *
    * Mutable access is given to what a component of the step writes: the
-   * points' properties (the particle-grid passes update them), the nodal
+   * points (get_mutable_particle_handler(): the particle-grid passes
+   * update their properties; every other component reads them through
+   * get_particle_handler()), the nodal
    * fields, the point update's findings and the timer.
    *
    * Two ways to attach, as in ASPECT: a component the Simulator creates
@@ -95,8 +97,15 @@ namespace MPM
 
     /// @name The points and the nodes
     /// @{
-    Particles::ParticleHandler<dim> &
+    /// The material points, to read (postprocessors, diagnostics).
+    const Particles::ParticleHandler<dim> &
     get_particle_handler() const;
+
+    /// The material points, to change: only the parts of the step that
+    /// write the points' properties (the particle-grid weights and
+    /// passes).
+    Particles::ParticleHandler<dim> &
+    get_mutable_particle_handler() const;
 
     /// A point's new velocity, position and stress from its interpolated
     /// grid values, and what the updates found (PointUpdate::record()).
