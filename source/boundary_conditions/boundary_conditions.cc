@@ -474,10 +474,11 @@ namespace MPM
     // set_wall_node_states() sizes both per-node vectors with the nodes.
     for (unsigned int k = 0; k < nodes.size(); ++k)
       if (contact_state[k] != ContactState::free ||
-          remembered_normal_force[k] >= 0)
+          remembered_normal_force[k] >= 0 || remembered_edge_force[k] >= 0)
         states.add(nodes[k].location,
                    contact_state[k],
-                   remembered_normal_force[k]);
+                   remembered_normal_force[k],
+                   remembered_edge_force[k]);
     return states;
   }
 
@@ -489,13 +490,15 @@ namespace MPM
   {
     contact_state.assign(nodes.size(), ContactState::free);
     remembered_normal_force.assign(nodes.size(), -1.);
+    remembered_edge_force.assign(nodes.size(), -1.);
     for (unsigned int k = 0; k < nodes.size(); ++k)
       if (nodes[k].frictional || nodes[k].edge_friction)
         {
           const auto state = states.find(nodes[k].location);
           contact_state[k] = state.contact;
-          if (nodes[k].frictional)
-            remembered_normal_force[k] = state.remembered_normal_force;
+          remembered_normal_force[k] = state.remembered_normal_force;
+          if (nodes[k].edge_friction)
+            remembered_edge_force[k] = state.remembered_edge_force;
         }
   }
 
@@ -568,6 +571,14 @@ namespace MPM
         std::array<double, 2> edge_relief{{0., 0.}};
         if (water != nullptr && node.edge_friction)
           edge_relief = edge_pore_water_relief(k, *water, mass, dt);
+        // Where an edge's wall has a normal-stress memory, each wall's
+        // Coulomb part takes the impulse of its remembered force.
+        std::array<double, 2>        edge_impulses;
+        const std::array<double, 2> *remembered_edge_impulses = nullptr;
+        if (node.edge_friction && edge_has_memory(node) &&
+            remembered_edge_normal_impulses(
+              k, v, a, mass, dt, edge_relief, edge_impulses))
+          remembered_edge_impulses = &edge_impulses;
         a = node.frictional ?
               WallFriction::frictional_acceleration(v,
                                                     a,
@@ -578,14 +589,16 @@ namespace MPM
                                                     &sticks,
                                                     held,
                                                     effective_reaction) :
-              WallFriction::edge_frictional_acceleration(v,
-                                                         a,
-                                                         node.edge_normals,
-                                                         node.edge_laws,
-                                                         node.edge_geometry,
-                                                         dt,
-                                                         &sticks,
-                                                         edge_relief);
+              WallFriction::edge_frictional_acceleration(
+                v,
+                a,
+                node.edge_normals,
+                node.edge_laws,
+                node.edge_geometry,
+                dt,
+                &sticks,
+                edge_relief,
+                remembered_edge_impulses);
         if (sticks)
           contact_state[k] = ContactState::stuck;
         for (unsigned int c = 0; c < dim; ++c)
@@ -624,6 +637,66 @@ namespace MPM
               N_m, now, (v - (v * node.normal) * node.normal).norm(), dt) :
                          now;
     return N_m / m;
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::edge_has_memory(const ConstrainedNode &node)
+  {
+    for (const BasalLaw<dim> *law : node.edge_laws)
+      if (law != nullptr && law->normal_stress_memory().active())
+        return true;
+    return false;
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::remembered_edge_normal_impulses(
+    const unsigned int           k,
+    const Tensor<1, dim>        &v,
+    const Tensor<1, dim>        &a,
+    const NodalVector           &mass,
+    const double                 dt,
+    const std::array<double, 2> &relief,
+    std::array<double, 2>       &impulses)
+  {
+    const auto &node   = nodes[k];
+    const auto &n      = node.edge_normals;
+    const auto  pushes = WallFriction::edge_wall_impulses(v, a, n, dt);
+    if (!pushes)
+      return false;
+    const double m   = mass.local_element(node.local_dofs[0]);
+    const double g01 = n[0] * n[1];
+    // The slip: the speed along the edge, as remembered_normal_reaction()
+    // takes the tangential speed of a node on one wall.
+    const double slip = WallFriction::along_edge(v, n, 1 - g01 * g01).norm();
+    for (unsigned int j = 0; j < 2; ++j)
+      {
+        // The impulse edge_frictional_acceleration() takes without a
+        // memory.
+        impulses[j]              = std::max(0., (*pushes)[j] - dt * relief[j]);
+        const BasalLaw<dim> *law = node.edge_laws[j];
+        if (law == nullptr || !law->normal_stress_memory().active())
+          continue;
+        double &N_m =
+          j == 0 ? remembered_normal_force[k] : remembered_edge_force[k];
+        if ((*pushes)[j] <= 0)
+          {
+            // Not pushing: the wall forgets the node's normal force.
+            N_m = -1;
+            continue;
+          }
+        // The contact of an edge node is bilateral: its walls hold it in
+        // every step, and the memory relaxes wherever the wall pushed in
+        // the last step too (N_m >= 0).
+        const double now = impulses[j] / dt * m;
+        N_m = N_m >= 0 ? law->normal_stress_memory().relax(N_m, now, slip, dt) :
+                         now;
+        impulses[j] = N_m / m * dt;
+      }
+    return true;
   }
 
 

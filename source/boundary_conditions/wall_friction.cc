@@ -82,20 +82,20 @@ namespace MPM
       const std::array<WallNodeGeometry, 2>      &geometry,
       const double                                dt,
       bool *const                                 sticks,
-      const std::array<double, 2>                &relief)
+      const std::array<double, 2>                &relief,
+      const std::array<double, 2>                *effective_impulses)
     {
       if (sticks != nullptr)
         *sticks = false;
       // Wall impulses lambda_j n_j that bring w onto the edge:
       // G lambda = -N w with the Gram matrix G of the normals.
-      const Tensor<1, dim> w   = v + dt * a;
-      const double         g01 = n[0] * n[1];
-      const double         det = 1 - g01 * g01;
-      if (det <= 0)
+      const auto impulses = edge_wall_impulses(v, a, n, dt);
+      if (!impulses)
         return a;
-      const double r0 = -(n[0] * w), r1 = -(n[1] * w);
-      const std::array<double, 2> lambda = {{(r0 - g01 * r1) / det,
-                                             (r1 - g01 * r0) / det}};
+      const Tensor<1, dim>        w      = v + dt * a;
+      const double                g01    = n[0] * n[1];
+      const double                det    = 1 - g01 * g01;
+      const std::array<double, 2> lambda = {{-(*impulses)[0], -(*impulses)[1]}};
       double capacity      = 0;
       bool   rate_dependent = false;
       for (unsigned int j = 0; j < 2; ++j)
@@ -105,17 +105,19 @@ namespace MPM
             // effective normal impulse: the wall's less what the pore
             // water carries (relief per unit mass and time, as in
             // frictional_acceleration()).
-            capacity += laws[j]->static_capacity(
-              std::max(0., -lambda[j] - dt * relief[j]), 1.);
+            capacity +=
+              laws[j]->static_capacity(effective_impulses != nullptr ?
+                                         (*effective_impulses)[j] :
+                                         std::max(0.,
+                                                  -lambda[j] - dt * relief[j]),
+                                       1.);
             rate_dependent |= laws[j]->rate_dependent() && lambda[j] < 0;
           }
       if (capacity <= 0 && !rate_dependent)
         return a;
       // Components along the edge (the free direction) and across it.
       const auto along = [&](const Tensor<1, dim> &u) {
-        return u + ((n[0] * u) * (g01 * n[1] - n[0]) +
-                    (n[1] * u) * (g01 * n[0] - n[1])) /
-                     det;
+        return along_edge(u, n, det);
       };
       const Tensor<1, dim> w_t   = along(w);
       const double         speed = w_t.norm();
@@ -164,7 +166,8 @@ namespace MPM
                                  const std::array<WallNodeGeometry, 2> &,
                                  const double,
                                  bool *const,
-                                 const std::array<double, 2> &);
+                                 const std::array<double, 2> &,
+                                 const std::array<double, 2> *);
     template Tensor<1, 3>
     edge_frictional_acceleration(const Tensor<1, 3> &,
                                  const Tensor<1, 3> &,
@@ -173,6 +176,7 @@ namespace MPM
                                  const std::array<WallNodeGeometry, 2> &,
                                  const double,
                                  bool *const,
-                                 const std::array<double, 2> &);
+                                 const std::array<double, 2> &,
+                                 const std::array<double, 2> *);
   } // namespace WallFriction
 } // namespace MPM

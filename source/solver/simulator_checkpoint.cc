@@ -44,9 +44,9 @@ namespace MPM
     // 4: the largest state-dependent wave speed; 5: the points' mass times
     // their shifts through periodic boundaries; 6: the rest criterion's
     // state; 7: the energies of the run's start for the stability check
-    // 8: the normal forces the frictional walls remember (older formats
-    // are still read).
-    const unsigned int      format        = 8;
+    // 8: the normal forces the frictional walls remember; 9: those of the
+    // second walls of 3D edge nodes (older formats are still read).
+    const unsigned int      format        = 9;
     const Tensor<1, dim> wrapped_shift = wrapped_mass_shift();
     std::array<double, dim> wrapped_shift_values;
     for (unsigned int d = 0; d < dim; ++d)
@@ -69,6 +69,7 @@ namespace MPM
                                   boundary_conditions.wall_node_states());
     const auto contact    = wall_states.contact_lists();
     const auto remembered = wall_states.remembered_lists();
+    const auto remembered_edge = wall_states.remembered_edge_lists();
 
     std::ostringstream state;
     {
@@ -79,7 +80,8 @@ namespace MPM
          << postprocessor_names << postprocessor_states << removed.energy
          << contact[0] << contact[1] << max_state_wave_speed
          << wrapped_shift_values << rest_criterion << stability_monitor
-         << remembered.first << remembered.second;
+         << remembered.first << remembered.second << remembered_edge.first
+         << remembered_edge.second;
     }
     return state.str();
   }
@@ -98,7 +100,7 @@ namespace MPM
     double                removed_energy = 0;
     std::vector<std::string> names, postprocessor_states;
     ar >> format >> space_dim >> n_points >> n_cells;
-    check_input(format >= 1 && format <= 8 && space_dim == dim,
+    check_input(format >= 1 && format <= 9 && space_dim == dim,
                 std::string("The checkpoint was written by another version "
                             "of dealii-mpm or for another dimension."));
     check_input(n_cells == grid.triangulation.n_global_active_cells(),
@@ -137,8 +139,16 @@ namespace MPM
     std::vector<double>     remembered_forces;
     if (format >= 8)
       ar >> remembered_locations >> remembered_forces;
-    boundary_conditions.set_wall_node_states(WallNodeStates<dim>::from_lists(
-      contact, remembered_locations, remembered_forces));
+    std::vector<Point<dim>> remembered_edge_locations;
+    std::vector<double>     remembered_edge_forces;
+    if (format >= 9)
+      ar >> remembered_edge_locations >> remembered_edge_forces;
+    boundary_conditions.set_wall_node_states(
+      WallNodeStates<dim>::from_lists(contact,
+                                      remembered_locations,
+                                      remembered_forces,
+                                      remembered_edge_locations,
+                                      remembered_edge_forces));
     check_input(names == postprocessor_names,
                 std::string("The checkpoint was written with the "
                            "postprocessors '" +

@@ -253,8 +253,8 @@ namespace MPM
      * walls' normals (edge_pore_water_relief()). Where the law has a
      * normal-stress memory (NormalStressMemory), the Coulomb part takes
      * the remembered normal force N_m of the node instead of the present
-     * one (remembered_normal_reaction(); at a 3D edge node, the present
-     * one).
+     * one (remembered_normal_reaction(); at a 3D edge node each wall's
+     * own, remembered_edge_normal_impulses()).
      */
     /**
      * The pore water at the nodes, for friction in effective stress: its
@@ -387,9 +387,38 @@ namespace MPM
     using ContactState = typename WallNodeStates<dim>::Contact;
     std::vector<ContactState> contact_state;
     /// The normal force N_m (N) each frictional node of a wall with a
-    /// normal-stress memory remembers; -1 where it remembers none (not
-    /// in contact).
+    /// normal-stress memory remembers (at a 3D edge node, its first
+    /// wall's); -1 where it remembers none (not in contact).
     std::vector<double> remembered_normal_force;
+    /// At each 3D edge node, the normal force its second wall remembers
+    /// (as remembered_normal_force; -1 elsewhere).
+    std::vector<double> remembered_edge_force;
+    /// Whether a wall of the 3D edge node @p node has a law with a
+    /// normal-stress memory.
+    static bool
+    edge_has_memory(const ConstrainedNode &node);
+    /**
+     * At the 3D edge node @p k (velocity @p v, acceleration @p a before
+     * the walls' resistance), the normal
+     * impulse per unit mass each wall's Coulomb part takes, @p impulses:
+     * the present effective one, max(0, -lambda_j - dt relief_j) with
+     * the pore water's @p relief (WallFriction::edge_frictional_
+     * acceleration()), or, for a wall whose law has a normal-stress
+     * memory, N_m,j dt / m, its remembered normal force updated here as
+     * remembered_normal_reaction() does on one wall, with the speed
+     * along the edge as the slip (the walls hold an edge node in every
+     * step: it relaxes wherever the wall pushed in the last step);
+     * forgotten where the wall does not push. False where the walls make
+     * no edge (parallel normals).
+     */
+    bool
+    remembered_edge_normal_impulses(const unsigned int           k,
+                                    const Tensor<1, dim>        &v,
+                                    const Tensor<1, dim>        &a,
+                                    const NodalVector           &mass,
+                                    const double                 dt,
+                                    const std::array<double, 2> &relief,
+                                    std::array<double, 2>       &impulses);
     /**
      * The normal reaction per unit mass that the Coulomb part of the
      * frictional node @p k takes (velocity @p v and acceleration @p a

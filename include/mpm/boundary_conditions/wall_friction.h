@@ -91,7 +91,10 @@ namespace MPM
      * With pore water, @p relief[j] (per unit mass and time, as in
      * frictional_acceleration()) is what wall j's push holds beyond the
      * effective normal force: its impulse counts as
-     * max(0, -lambda_j - dt relief_j).
+     * max(0, -lambda_j - dt relief_j), unless the caller gives the
+     * impulses the walls' Coulomb parts take instead,
+     * @p effective_impulses (BoundaryConditions::apply_friction(): a
+     * normal-stress memory).
      */
     template <int dim>
     Tensor<1, dim>
@@ -103,7 +106,49 @@ namespace MPM
       const std::array<WallNodeGeometry, 2>      &geometry,
       const double                                dt,
       bool *const                                 sticks = nullptr,
-      const std::array<double, 2>                &relief = {{0., 0.}});
+      const std::array<double, 2>                &relief = {{0., 0.}},
+      const std::array<double, 2>                *effective_impulses = nullptr);
+
+    /**
+     * The normal impulses per unit mass -lambda_j of
+     * edge_frictional_acceleration(), positive where wall j pushes, that
+     * bring the trial velocity v + dt a of a node onto the edge of the
+     * walls of outward unit normals @p n; nullopt where the normals are
+     * parallel (no edge).
+     */
+    template <int dim>
+    inline std::optional<std::array<double, 2>>
+    edge_wall_impulses(const Tensor<1, dim>                &v,
+                       const Tensor<1, dim>                &a,
+                       const std::array<Tensor<1, dim>, 2> &n,
+                       const double                         dt)
+    {
+      const Tensor<1, dim> w   = v + dt * a;
+      const double         g01 = n[0] * n[1];
+      const double         det = 1 - g01 * g01;
+      if (det <= 0)
+        return std::nullopt;
+      const double r0 = -(n[0] * w), r1 = -(n[1] * w);
+      return std::array<double, 2>{
+        {-(r0 - g01 * r1) / det, -(r1 - g01 * r0) / det}};
+    }
+
+    /**
+     * The part of @p u along the edge of the walls of outward unit
+     * normals @p n (the edge's free direction), for a Gram determinant
+     * @p det = 1 - (n_0.n_1)^2 > 0.
+     */
+    template <int dim>
+    inline Tensor<1, dim>
+    along_edge(const Tensor<1, dim>                &u,
+               const std::array<Tensor<1, dim>, 2> &n,
+               const double                         det)
+    {
+      const double g01 = n[0] * n[1];
+      return u + ((n[0] * u) * (g01 * n[1] - n[0]) +
+                  (n[1] * u) * (g01 * n[0] - n[1])) /
+                   det;
+    }
   } // namespace WallFriction
 } // namespace MPM
 

@@ -42,23 +42,29 @@ namespace MPM
     {
       Point<dim> location;
       Contact    contact = Contact::free;
-      /// The remembered normal force (N); negative: none.
+      /// The remembered normal force (N); negative: none. At a 3D edge
+      /// node, its first wall's.
       double remembered_normal_force = -1;
+      /// At a 3D edge node, the normal force its second wall remembers
+      /// (N); negative: none.
+      double remembered_edge_force = -1;
 
       template <class Archive>
       void
       serialize(Archive &ar, const unsigned int)
       {
-        ar &location &contact &remembered_normal_force;
+        ar &location &contact &remembered_normal_force &remembered_edge_force;
       }
     };
 
     void
     add(const Point<dim> &location,
         const Contact     contact,
-        const double      remembered_normal_force)
+        const double      remembered_normal_force,
+        const double      remembered_edge_force = -1)
     {
-      records.push_back({location, contact, remembered_normal_force});
+      records.push_back(
+        {location, contact, remembered_normal_force, remembered_edge_force});
       sorted = false;
     }
 
@@ -93,6 +99,8 @@ namespace MPM
           state.contact = std::max(state.contact, r->contact);
           if (state.remembered_normal_force < 0)
             state.remembered_normal_force = r->remembered_normal_force;
+          if (state.remembered_edge_force < 0)
+            state.remembered_edge_force = r->remembered_edge_force;
         }
       return state;
     }
@@ -107,8 +115,9 @@ namespace MPM
     /**
      * The checkpoint's fields (format 3: the locations of the nodes that
      * slid and of those that stuck; format 8: the remembered forces by
-     * location), and the states from them (older checkpoints lack the
-     * later fields: empty lists).
+     * location; format 9: those of the 3D edge nodes' second walls), and
+     * the states from them (older checkpoints lack the later fields:
+     * empty lists).
      */
     std::array<std::vector<Point<dim>>, 2>
     contact_lists() const
@@ -133,10 +142,25 @@ namespace MPM
       return lists;
     }
 
+    std::pair<std::vector<Point<dim>>, std::vector<double>>
+    remembered_edge_lists() const
+    {
+      std::pair<std::vector<Point<dim>>, std::vector<double>> lists;
+      for (const auto &r : records)
+        if (r.remembered_edge_force >= 0)
+          {
+            lists.first.push_back(r.location);
+            lists.second.push_back(r.remembered_edge_force);
+          }
+      return lists;
+    }
+
     static WallNodeStates
     from_lists(const std::array<std::vector<Point<dim>>, 2> &contact,
                const std::vector<Point<dim>>                &locations,
-               const std::vector<double>                    &forces)
+               const std::vector<double>                    &forces,
+               const std::vector<Point<dim>> &edge_locations = {},
+               const std::vector<double>     &edge_forces    = {})
     {
       WallNodeStates states;
       for (unsigned int i = 0; i < 2; ++i)
@@ -144,6 +168,8 @@ namespace MPM
           states.add(x, i == 1 ? Contact::stuck : Contact::sliding, -1);
       for (unsigned int i = 0; i < locations.size(); ++i)
         states.add(locations[i], Contact::free, forces[i]);
+      for (unsigned int i = 0; i < edge_locations.size(); ++i)
+        states.add(edge_locations[i], Contact::free, -1, edge_forces[i]);
       states.sort();
       return states;
     }
