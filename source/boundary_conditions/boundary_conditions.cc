@@ -632,11 +632,9 @@ namespace MPM
     // remembered N_m.
     const double m   = mass.local_element(node.local_dofs[0]);
     const double now = effective_reaction.value_or(reaction) * m;
-    N_m              = held && N_m >= 0 ?
-                         node.law->normal_stress_memory().relax(
-              N_m, now, (v - (v * node.normal) * node.normal).norm(), dt) :
-                         now;
-    return N_m / m;
+    return node.law->normal_stress_memory().remember(
+             N_m, held, now, (v - (v * node.normal) * node.normal).norm(), dt) /
+           m;
   }
 
 
@@ -692,9 +690,9 @@ namespace MPM
         // every step, and the memory relaxes wherever the wall pushed in
         // the last step too (N_m >= 0).
         const double now = impulses[j] / dt * m;
-        N_m = N_m >= 0 ? law->normal_stress_memory().relax(N_m, now, slip, dt) :
-                         now;
-        impulses[j] = N_m / m * dt;
+        impulses[j] =
+          law->normal_stress_memory().remember(N_m, true, now, slip, dt) / m *
+          dt;
       }
     return true;
   }

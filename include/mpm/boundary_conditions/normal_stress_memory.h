@@ -94,6 +94,25 @@ namespace MPM
       return (remembered + beta * now) / (1 + beta);
     }
 
+    /**
+     * The remembered normal force @p N_m (N; negative: none) of a wall
+     * node that pushes on its wall, after a step: the present force
+     * @p now at first contact (none remembered, or the wall did not hold
+     * the node in the last step: @p held false), else relax()ed towards
+     * it. Returns the new N_m. (A node that does not push forgets: N_m =
+     * -1, the caller's.)
+     */
+    double
+    remember(double      &N_m,
+             const bool   held,
+             const double now,
+             const double slip_speed,
+             const double dt) const
+    {
+      N_m = held && N_m >= 0 ? relax(N_m, now, slip_speed, dt) : now;
+      return N_m;
+    }
+
     double length = 0;
     double speed  = 0.1;
   };
