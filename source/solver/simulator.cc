@@ -67,16 +67,8 @@ namespace MPM
                       "the grid-to-particle pass of the step before sets; "
                       "it was set for step " +
                       std::to_string(max_point_speed_step) + "."));
-    // With a state-dependent stiffness (Cam-Clay), those materials' wave
-    // speed is the largest over their points at the start of the step.
-    const double wave_speed =
-      materials.has_state_dependent_stiffness() ?
-        std::max(materials.max_constant_wave_speed(), max_state_wave_speed) :
-        materials.max_wave_speed();
-    const double fastest_wave =
-      pore_water.active() ?
-        std::max(wave_speed, pore_water.max_wave_speed(materials)) :
-        wave_speed;
+    // The fastest wave of the components that bound the step.
+    const double fastest_wave = time_step_bounds.max_wave_speed();
     if (time_stepping.adaptive)
       dt = std::min(time_stepping.maximum_time_step,
                     time_stepping.cfl_number * active_cell_size /

@@ -128,13 +128,13 @@ namespace MPM
         }
     write_output(true);
     throw std::runtime_error(
-      "The run became unstable " + when + ": " + reason + " First: " +
-      point_description + ". The state at this step was written to " +
-      output_writer.directory() +
+      "The run became unstable " + when + ": " + reason +
+      " First: " + point_description +
+      ". The state at this step was written to " + output_writer.directory() +
       " (statistics, and the particle files if 'Output/Write particles' is "
       "on). " +
       StabilityMonitor<dim>::advice(time_step,
-                                    materials.max_wave_speed(),
+                                    time_step_bounds.max_wave_speed(),
                                     active_cell_size,
                                     time_stepping.adaptive));
   }

@@ -21,6 +21,7 @@ namespace MPM
     TimerOutput::Scope   t(timer, "setup");
     const OneThreadScope one_thread;
     setup_scene();
+    setup_time_step_bounds();
     setup_nodal_fields();
     setup_point_properties();
     const std::string state = create_points();
@@ -95,6 +96,27 @@ namespace MPM
                          "/Pore pressure is set, but no material is "
                          "saturated (Porosity > 0): there is no pore water "
                          "for it to act on.");
+  }
+
+
+  template <int dim>
+  void
+  Simulator<dim>::setup_time_step_bounds()
+  {
+    time_step_bounds.clear();
+    // With a state-dependent stiffness (Cam-Clay), those materials' wave
+    // speed is the largest over their points at the start of the step.
+    time_step_bounds.add("materials", [this]() {
+      return materials.has_state_dependent_stiffness() ?
+               std::max(materials.max_constant_wave_speed(),
+                        max_state_wave_speed) :
+               materials.max_wave_speed();
+    });
+    // The two phases' fast P wave (PoreWater::fastest_wave_speed()).
+    if (pore_water.active())
+      time_step_bounds.add("pore water", [this]() {
+        return pore_water.max_wave_speed(materials);
+      });
   }
 
 
@@ -211,6 +233,7 @@ namespace MPM
 #define MPM_INSTANTIATE(dim)                                     \
   template void        Simulator<dim>::setup();                  \
   template void        Simulator<dim>::setup_scene();            \
+  template void        Simulator<dim>::setup_time_step_bounds(); \
   template void        Simulator<dim>::setup_point_properties(); \
   template std::string Simulator<dim>::create_points();
 

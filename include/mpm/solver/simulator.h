@@ -29,6 +29,7 @@
 #include <mpm/solver/stability_monitor.h>
 #include <mpm/solver/statistics.h>
 #include <mpm/solver/statistics_file.h>
+#include <mpm/solver/time_step_bounds.h>
 #include <mpm/solver/time_stepping.h>
 #include <mpm/transfer/particle_grid_weights.h>
 #include <mpm/transfer/velocity_transfer.h>
@@ -159,8 +160,9 @@ namespace MPM
     /** @} */
 
     /// The run's set-up (simulator_setup.cc): setup_scene(),
-    /// setup_nodal_fields(), setup_point_properties(), create_points(),
-    /// then the first statistics and the output files.
+    /// setup_time_step_bounds(), setup_nodal_fields(),
+    /// setup_point_properties(), create_points(), then the first
+    /// statistics and the output files.
     void
     setup();
 
@@ -168,6 +170,11 @@ namespace MPM
     /// their combination.
     void
     setup_scene();
+
+    /// What limits the step (TimeStepBounds): the materials' waves, and
+    /// the pore water's where a material is saturated.
+    void
+    setup_time_step_bounds();
 
     /// The points' property slots (fixed, material state, the transfer
     /// scheme's, the weights', the pore water's) and the particle handler
@@ -395,6 +402,8 @@ namespace MPM
     /// (PointUpdate::take_max_state_wave_speed()) or by the set-up; kept in
     /// the checkpoint.
     double       max_state_wave_speed = 0;
+    /// The components' wave speeds that bound the step.
+    TimeStepBounds time_step_bounds;
     /// Shortest edge among the cells that hold points this step (all ranks).
     double       active_cell_size = 0;
     unsigned int output_index    = 0;
