@@ -104,19 +104,20 @@ namespace MPM
   Simulator<dim>::setup_time_step_bounds()
   {
     time_step_bounds.clear();
-    // With a state-dependent stiffness (Cam-Clay), those materials' wave
-    // speed is the largest over their points at the start of the step.
-    time_step_bounds.add("materials", [this]() {
+    // The materials' P waves. With a state-dependent stiffness (Cam-Clay),
+    // those materials' wave speed is the largest over their points at the
+    // start of the step.
+    time_step_bounds.add([this]() {
       return materials.has_state_dependent_stiffness() ?
                std::max(materials.max_constant_wave_speed(),
                         max_state_wave_speed) :
                materials.max_wave_speed();
     });
-    // The two phases' fast P wave (PoreWater::fastest_wave_speed()).
+    // The pore water's: the two phases' fast P wave
+    // (PoreWater::fastest_wave_speed()).
     if (pore_water.active())
-      time_step_bounds.add("pore water", [this]() {
-        return pore_water.max_wave_speed(materials);
-      });
+      time_step_bounds.add(
+        [this]() { return pore_water.max_wave_speed(materials); });
   }
 
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <functional>
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -19,10 +18,10 @@ namespace MPM
    * contributes the fastest speed it carries, and the CFL condition
    * dt = CFL h_min / (c + |v|_max) takes c as the largest of them
    * (Simulator::compute_time_step()). A component adds itself once, at
-   * set-up (Simulator::setup_time_step_bounds()), with a name for the
-   * messages and a function that the step calls at its start: a bound
-   * that depends on the points' state (a pressure-dependent stiffness)
-   * reads that state there. The step knows no component by name.
+   * set-up (Simulator::setup_time_step_bounds()), as a function that the
+   * step calls at its start: a bound that depends on the points' state (a
+   * pressure-dependent stiffness) reads that state there. The step knows
+   * no component by name.
    */
   class TimeStepBounds
   {
@@ -37,11 +36,11 @@ namespace MPM
       bounds.clear();
     }
 
-    /// Add the bound called @p name, whose speed is @p wave_speed.
+    /// Add a bound whose speed is @p wave_speed.
     void
-    add(const std::string &name, WaveSpeed wave_speed)
+    add(WaveSpeed wave_speed)
     {
-      bounds.emplace_back(name, std::move(wave_speed));
+      bounds.push_back(std::move(wave_speed));
     }
 
     /// The largest wave speed of all bounds (m/s): c of the CFL condition.
@@ -51,22 +50,12 @@ namespace MPM
       Assert(!bounds.empty(), ExcMessage("No time-step bound was added."));
       double c = 0;
       for (const auto &bound : bounds)
-        c = std::max(c, bound.second());
+        c = std::max(c, bound());
       return c;
     }
 
-    /// The names of the bounds, in the order they were added.
-    std::vector<std::string>
-    names() const
-    {
-      std::vector<std::string> result;
-      for (const auto &bound : bounds)
-        result.push_back(bound.first);
-      return result;
-    }
-
   private:
-    std::vector<std::pair<std::string, WaveSpeed>> bounds;
+    std::vector<WaveSpeed> bounds;
   };
 } // namespace MPM
 
