@@ -129,30 +129,18 @@ namespace MPM
       return lists;
     }
 
+    /// The remembered forces (format 8) and those of the 3D edge nodes'
+    /// second walls (format 9), each with its nodes' locations.
     std::pair<std::vector<Point<dim>>, std::vector<double>>
     remembered_lists() const
     {
-      std::pair<std::vector<Point<dim>>, std::vector<double>> lists;
-      for (const auto &r : records)
-        if (r.remembered_normal_force >= 0)
-          {
-            lists.first.push_back(r.location);
-            lists.second.push_back(r.remembered_normal_force);
-          }
-      return lists;
+      return lists_of(&Record::remembered_normal_force);
     }
 
     std::pair<std::vector<Point<dim>>, std::vector<double>>
     remembered_edge_lists() const
     {
-      std::pair<std::vector<Point<dim>>, std::vector<double>> lists;
-      for (const auto &r : records)
-        if (r.remembered_edge_force >= 0)
-          {
-            lists.first.push_back(r.location);
-            lists.second.push_back(r.remembered_edge_force);
-          }
-      return lists;
+      return lists_of(&Record::remembered_edge_force);
     }
 
     static WallNodeStates
@@ -185,6 +173,21 @@ namespace MPM
     }
 
   private:
+    /// The records that remember a force in @p field: their locations
+    /// and those forces.
+    std::pair<std::vector<Point<dim>>, std::vector<double>>
+    lists_of(double Record::*field) const
+    {
+      std::pair<std::vector<Point<dim>>, std::vector<double>> lists;
+      for (const auto &r : records)
+        if (r.*field >= 0)
+          {
+            lists.first.push_back(r.location);
+            lists.second.push_back(r.*field);
+          }
+      return lists;
+    }
+
     /// Exact order: the locations are vertices of the same mesh.
     static bool
     location_less(const Record &a, const Record &b)
