@@ -67,12 +67,18 @@ namespace MPM
         prm.declare_entry("Type",
                           "fixed",
                           Patterns::Selection(
-                            "free|fixed|slip|friction|velocity|traction"),
+                            "free|fixed|slip|friction|velocity|traction|"
+                            "absorbing"),
                           "free; fixed (zero velocity); slip (zero normal "
                           "velocity); friction (zero normal velocity and "
                           "the 'Basal law'); velocity (prescribed normal and "
                           "tangential velocity, 2D); traction (free, loaded "
-                          "by the 'Traction').");
+                          "by the 'Traction'); absorbing (free, with "
+                          "dashpots that absorb the waves arriving at the "
+                          "boundary, 'Absorbing density' and the wave "
+                          "speeds, and loaded by the 'Traction': the mesh "
+                          "ends where the ground does not; "
+                          "doc/boundary_conditions.md).");
         prm.declare_entry("Friction coefficient",
                           "0",
                           Patterns::Double(0),
@@ -122,10 +128,36 @@ namespace MPM
                           dim == 2 ? "0, 0" : "0, 0, 0",
                           Patterns::Anything(),
                           "Force per area in Pa on the boundary's faces for "
-                          "Type = traction, as components in the scene's "
-                          "frame (x, y[, z]); e.g. '0, -1e5' presses a top "
-                          "face down with 100 kPa. It acts on the nodes of "
-                          "the faces that hold material.");
+                          "Type = traction or absorbing, as components in "
+                          "the scene's frame (x, y[, z]); e.g. '0, -1e5' "
+                          "presses a top face down with 100 kPa. It acts on "
+                          "the nodes of the faces that hold material. On an "
+                          "absorbing boundary under gravity it is the "
+                          "static reaction of the ground beyond the mesh "
+                          "(without it the body sinks through the "
+                          "dashpots).");
+        prm.declare_entry("Absorbing density",
+                          "0",
+                          Patterns::Double(0),
+                          "Type = absorbing: the density (kg/m^3) of the "
+                          "ground beyond the boundary. With the wave speeds "
+                          "below it gives the dashpots' tractions "
+                          "-rho c_p v_n (normal) and -rho c_s v_t "
+                          "(tangential), which absorb plane waves meeting "
+                          "the boundary head-on (Lysmer and Kuhlemeyer "
+                          "1969). For an elastic ground c_p = sqrt((lambda "
+                          "+ 2 G) / rho), c_s = sqrt(G / rho).");
+        prm.declare_entry("Absorbing P-wave speed",
+                          "0",
+                          Patterns::Double(0),
+                          "Type = absorbing: c_p (m/s), the speed of the "
+                          "compression waves beyond the boundary.");
+        prm.declare_entry("Absorbing S-wave speed",
+                          "0",
+                          Patterns::Double(0),
+                          "Type = absorbing: c_s (m/s), the speed of the "
+                          "shear waves beyond the boundary (0 for a "
+                          "liquid); at most the P-wave speed.");
         prm.declare_entry("Pore pressure",
                           "none",
                           Patterns::Anything(),
@@ -164,15 +196,16 @@ namespace MPM
         for (const int id : Utilities::string_to_int(
                Utilities::split_string_list(prm.get("Boundary ids"))))
           s.ids.push_back(id);
-        s.type = select_choice<BoundaryType>(
-          prm.get("Type"),
-          {{"free", BoundaryType::free},
-           {"fixed", BoundaryType::fixed},
-           {"slip", BoundaryType::slip},
-           {"friction", BoundaryType::friction},
-           {"velocity", BoundaryType::velocity},
-           {"traction", BoundaryType::traction}},
-          path + "Type");
+        s.type =
+          select_choice<BoundaryType>(prm.get("Type"),
+                                      {{"free", BoundaryType::free},
+                                       {"fixed", BoundaryType::fixed},
+                                       {"slip", BoundaryType::slip},
+                                       {"friction", BoundaryType::friction},
+                                       {"velocity", BoundaryType::velocity},
+                                       {"traction", BoundaryType::traction},
+                                       {"absorbing", BoundaryType::absorbing}},
+                                      path + "Type");
         if (s.type == BoundaryType::friction)
           {
             try
@@ -218,9 +251,30 @@ namespace MPM
                                "on a wall: the water of a prescribed "
                                "pressure passes through the boundary.");
           }
-        if (s.type == BoundaryType::traction)
+        if (carries_traction(s.type))
           s.traction =
             parse_point<dim>(prm.get("Traction"), path + "Traction");
+        if (s.type == BoundaryType::absorbing)
+          {
+            const double rho = prm.get_double("Absorbing density");
+            const double c_p = prm.get_double("Absorbing P-wave speed");
+            const double c_s = prm.get_double("Absorbing S-wave speed");
+            check_input(rho > 0 && c_p > 0,
+                        path +
+                          "Type = absorbing needs 'Absorbing density' "
+                          "and 'Absorbing P-wave speed' > 0 (the "
+                          "ground beyond the boundary); they are " +
+                          std::to_string(rho) + " kg/m^3 and " +
+                          std::to_string(c_p) + " m/s.");
+            check_input(c_s <= c_p,
+                        path +
+                          "Absorbing S-wave speed = " + std::to_string(c_s) +
+                          " m/s is larger than the P-wave speed " +
+                          std::to_string(c_p) +
+                          " m/s: no elastic ground has that.");
+            s.normal_impedance     = rho * c_p;
+            s.tangential_impedance = rho * c_s;
+          }
         prm.leave_subsection();
         specs.push_back(s);
       }
@@ -286,6 +340,7 @@ namespace MPM
     set_wall_node_states(states_before);
     wall_gap.setup(grid, specs, layout, nodes);
     tractions.setup(grid, specs, layout, periodic_nodes);
+    absorbing.setup(grid, specs, layout, periodic_nodes);
     pore_pressures.setup(grid, specs, layout, periodic_nodes);
     compute_frictional_wall_area(grid, layout, periodic_nodes);
     // The pore water's walls: the same without the drained ones.
@@ -792,8 +847,7 @@ namespace MPM
     return std::any_of(specs.begin(), specs.end(), [](const auto &spec) {
       return (spec.type == BoundaryType::velocity &&
               spec.local_velocity.norm() > 0) ||
-             (spec.type == BoundaryType::traction &&
-              spec.traction.norm() > 0);
+             (carries_traction(spec.type) && spec.traction.norm() > 0);
     });
   }
 

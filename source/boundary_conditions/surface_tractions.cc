@@ -13,7 +13,7 @@ namespace MPM
                                const PeriodicNodeGroups *periodic_nodes)
   {
     has_load = std::any_of(specs.begin(), specs.end(), [](const auto &s) {
-      return s.type == BoundaryType::traction && s.traction.norm() > 0;
+      return carries_traction(s.type) && s.traction.norm() > 0;
     });
     if (!has_load)
       {
@@ -24,7 +24,7 @@ namespace MPM
     nodal_force = 0;
     const auto loads = [&specs](const types::boundary_id id) {
       return std::any_of(specs.begin(), specs.end(), [id](const auto &s) {
-        return s.type == BoundaryType::traction &&
+        return carries_traction(s.type) &&
                std::find(s.ids.begin(), s.ids.end(), id) != s.ids.end();
       });
     };
@@ -36,9 +36,8 @@ namespace MPM
           const types::boundary_id id,
           const double       area) {
         for (const auto &spec : specs)
-          if (spec.type == BoundaryType::traction &&
-              std::find(spec.ids.begin(), spec.ids.end(), id) !=
-                spec.ids.end())
+          if (carries_traction(spec.type) &&
+              std::find(spec.ids.begin(), spec.ids.end(), id) != spec.ids.end())
             {
               const Tensor<1, dim> t = grid.to_mesh_frame(spec.traction);
               for (unsigned int c = 0; c < dim; ++c)

@@ -80,6 +80,12 @@ namespace MPM
     for_each_active_dof([&](const unsigned int i) {
       nodal.velocity_new.local_element(i) = brought_velocity(i);
     });
+    // The absorbing boundaries' dashpots, implicitly (before the walls:
+    // a node of an absorbing face and a wall is damped, then held).
+    boundary_conditions.apply_absorbing(nodal.mass,
+                                        nodal.velocity_new,
+                                        nodal.acceleration,
+                                        dt);
     if (pore_water.active())
       {
         const auto water = pore_water.at_nodes();

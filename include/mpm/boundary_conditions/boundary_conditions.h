@@ -6,6 +6,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include <mpm/boundary_conditions/absorbing_boundaries.h>
 #include <mpm/boundary_conditions/boundary_pore_pressures.h>
 #include <mpm/boundary_conditions/boundary_spec.h>
 #include <mpm/boundary_conditions/surface_tractions.h>
@@ -49,7 +50,10 @@ namespace MPM
    *              holds the material only while the material also touches
    *              the wall around it (WallGap);
    *  - velocity: prescribed velocity, given by its normal and tangential
-   *              components in the local frame (2D).
+   *              components in the local frame (2D);
+   *  - traction: free, loaded by a traction (SurfaceTractions);
+   *  - absorbing: free, with a viscous dashpot that absorbs the waves
+   *              arriving at it (AbsorbingBoundaries) and a traction.
    *
    * The pieces, one file each: the node frames (compute_node_frames(): the
    * geometry of the walls and the corner rule), the constraints
@@ -313,6 +317,21 @@ namespace MPM
       tractions.add_to(mass, active_dofs, force);
     }
 
+    /**
+     * The dashpots of the absorbing boundaries ('Type = absorbing',
+     * AbsorbingBoundaries) on the nodal acceleration @p acceleration,
+     * implicitly over the step @p dt from the brought velocity
+     * @p velocity, at the nodes with mass.
+     */
+    void
+    apply_absorbing(const NodalVector &mass,
+                    const NodalVector &velocity,
+                    NodalVector       &acceleration,
+                    const double       dt) const
+    {
+      absorbing.apply(mass, velocity, acceleration, dt);
+    }
+
     const AffineConstraints<double> &
     constraints() const
     {
@@ -439,8 +458,10 @@ namespace MPM
                                const std::optional<double> &effective_reaction);
     /// Where the material touches the frictional walls.
     WallGap<dim> wall_gap;
-    /// The loads of the boundaries of Type = traction.
+    /// The loads of the boundaries of Type = traction and absorbing.
     SurfaceTractions<dim> tractions;
+    /// The dashpots of the boundaries of Type = absorbing.
+    AbsorbingBoundaries<dim>   absorbing;
     BoundaryPorePressures<dim> pore_pressures;
     /// Whether a wall is 'Drainage = drained', and then the projections
     /// of the pore water's walls (the impermeable ones).

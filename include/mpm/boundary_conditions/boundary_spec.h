@@ -28,7 +28,10 @@ namespace MPM
     /// Prescribed (normal, tangential) velocity in the node frame (2D).
     velocity,
     /// No constraint; a load, the 'Traction' (SurfaceTractions).
-    traction
+    traction,
+    /// No constraint; a viscous dashpot that absorbs the waves arriving
+    /// at the boundary (AbsorbingBoundaries), and the 'Traction'.
+    absorbing
   };
 
   /// Whether a boundary of type @p type holds the material's velocity
@@ -36,7 +39,17 @@ namespace MPM
   inline bool
   is_wall(const BoundaryType type)
   {
-    return type != BoundaryType::free && type != BoundaryType::traction;
+    return type != BoundaryType::free && type != BoundaryType::traction &&
+           type != BoundaryType::absorbing;
+  }
+
+
+  /// Whether a boundary of type @p type takes a 'Traction' (a load on
+  /// its faces): traction and absorbing boundaries.
+  inline bool
+  carries_traction(const BoundaryType type)
+  {
+    return type == BoundaryType::traction || type == BoundaryType::absorbing;
   }
 
 
@@ -57,8 +70,13 @@ namespace MPM
     Tensor<1, dim>                  given_normal;
     /// (normal, tangential) velocity for Type = velocity.
     Tensor<1, dim>                  local_velocity;
-    /// Force per area (Pa) for Type = traction, in the scene's frame.
+    /// Force per area (Pa) for Type = traction or absorbing, in the
+    /// scene's frame.
     Tensor<1, dim>                  traction;
+    /// Type = absorbing: the dashpots' impedances rho c_p (normal) and
+    /// rho c_s (tangential), in Pa s/m.
+    double normal_impedance     = 0;
+    double tangential_impedance = 0;
     /// 'Drainage = drained': pore water passes through this wall (its
     /// normal velocity is free there, the pore pressure zero).
     bool                            drained = false;

@@ -14,13 +14,14 @@ namespace MPM
 
   /**
    * The loads of the boundaries of 'Type = traction' (a surcharge, a
-   * foundation's pressure): a traction t (force per area, the scene's
-   * frame) on the mesh faces of the boundary, which acts on the nodes as
-   * the force int_face N_i t dA. The boundary is otherwise free. The load
-   * is carried by what is at the nodes: at a node without material it
-   * acts on nothing (the material has left the face), so it is added
-   * only at nodes with mass. With pore water, the skeleton carries it: the
-   * face drains (the water's pressure there is zero).
+   * foundation's pressure) and 'Type = absorbing' (the static reaction
+   * of the ground the boundary stands for): a traction t (force per area, the
+   * scene's frame) on the mesh faces of the boundary, which acts on the nodes
+   * as the force int_face N_i t dA. The boundary is otherwise free. The load is
+   * carried by what is at the nodes: at a node without material it acts on
+   * nothing (the material has left the face), so it is added only at nodes with
+   * mass. With pore water, the skeleton carries it: the face drains (the
+   * water's pressure there is zero).
    */
   template <int dim>
   class SurfaceTractions
