@@ -158,6 +158,20 @@ namespace MPM
                           "Type = absorbing: c_s (m/s), the speed of the "
                           "shear waves beyond the boundary (0 for a "
                           "liquid); at most the P-wave speed.");
+        prm.declare_entry("Absorbing input velocity",
+                          "none",
+                          Patterns::Anything(),
+                          "Type = absorbing: 'none', or the velocity (m/s) "
+                          "that a wave coming in through the boundary gives "
+                          "the ground there, a function of the time t with "
+                          "one component per direction of the scene's "
+                          "frame, e.g. '0.1 * sin(2 * pi * 2 * t) * (t < "
+                          "1); 0' (an earthquake's horizontal motion "
+                          "entering through the base). The dashpots then "
+                          "act on 2 v_in - v: the wave enters, what the "
+                          "mesh sends back leaves (a compliant base; on a "
+                          "free surface above an elastic column the motion "
+                          "is 2 v_in).");
         prm.declare_entry("Pore pressure",
                           "none",
                           Patterns::Anything(),
@@ -274,7 +288,13 @@ namespace MPM
                           " m/s: no elastic ground has that.");
             s.normal_impedance     = rho * c_p;
             s.tangential_impedance = rho * c_s;
+            if (prm.get("Absorbing input velocity") != "none")
+              s.input_velocity = prm.get("Absorbing input velocity");
           }
+        else
+          check_input(prm.get("Absorbing input velocity") == "none",
+                      path + "Absorbing input velocity is for Type = "
+                             "absorbing boundaries only.");
         prm.leave_subsection();
         specs.push_back(s);
       }
@@ -847,7 +867,8 @@ namespace MPM
     return std::any_of(specs.begin(), specs.end(), [](const auto &spec) {
       return (spec.type == BoundaryType::velocity &&
               spec.local_velocity.norm() > 0) ||
-             (carries_traction(spec.type) && spec.traction.norm() > 0);
+             (carries_traction(spec.type) && spec.traction.norm() > 0) ||
+             !spec.input_velocity.empty();
     });
   }
 

@@ -82,10 +82,8 @@ namespace MPM
     });
     // The absorbing boundaries' dashpots, implicitly (before the walls:
     // a node of an absorbing face and a wall is damped, then held).
-    boundary_conditions.apply_absorbing(nodal.mass,
-                                        nodal.velocity_new,
-                                        nodal.acceleration,
-                                        dt);
+    boundary_conditions.apply_absorbing(
+      nodal.mass, nodal.velocity_new, nodal.acceleration, dt, time);
     if (pore_water.active())
       {
         const auto water = pore_water.at_nodes();

@@ -1,6 +1,7 @@
 #ifndef mpm_boundary_conditions_absorbing_boundaries_h
 #define mpm_boundary_conditions_absorbing_boundaries_h
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/tensor.h>
 
 #include <mpm/boundary_conditions/boundary_spec.h>
@@ -9,6 +10,7 @@
 #include <mpm/grid/periodic_node_groups.h>
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace MPM
@@ -33,6 +35,14 @@ namespace MPM
    * material at the boundary) with a large C_i would take an explicit
    * dashpot's step past zero and flip its velocity, the implicit one only
    * brings it towards rest, at any step.
+   *
+   * An input motion (a compliant base, Joyner and Chen 1975): where the
+   * boundary has an 'Absorbing input velocity' v_in(t), the velocity a
+   * wave coming in from beyond the boundary would give the ground there,
+   * the dashpot acts on the difference, t = C_face (2 v_in - v): the
+   * incoming wave enters, and what comes back from the mesh leaves. (On a
+   * boundary at rest, v = v_in + v_reflected: 2 v_in - v = v_in -
+   * v_reflected, the incoming wave's traction minus the outgoing one's.)
    *
    * The dashpot acts on the nodes that hold material (as a traction
    * does); with pore water, on the skeleton (the face drains, as a free
@@ -65,28 +75,53 @@ namespace MPM
       return !nodes.empty() || has_absorbing;
     }
 
+    /// Whether an absorbing boundary has an input motion (it then does
+    /// work on the material).
+    bool
+    has_input() const
+    {
+      return !input_velocities.empty();
+    }
+
     /**
      * At each absorbing node with mass (@p mass > 0): replace the
      * acceleration @p acceleration by the one that takes the node from
      * @p velocity (the velocity the points brought) to the velocity of
-     * the implicit dashpot step of length @p dt.
+     * the implicit dashpot step of length @p dt, with the input motions
+     * at the time @p time (the step's forces').
      */
     void
     apply(const NodalVector &mass,
           const NodalVector &velocity,
           NodalVector       &acceleration,
-          const double       dt) const;
+          const double       dt,
+          const double       time) const;
 
   private:
+    /// An input motion's share of a node's dashpot: the function's index
+    /// in input_velocities and the dashpot matrix of its faces.
+    struct Input
+    {
+      unsigned int   function;
+      Tensor<2, dim> dashpot;
+    };
     /// One node of an absorbing face: its velocity components' local
-    /// element indices and its dashpot matrix C_i (N s/m).
+    /// element indices, its dashpot matrix C_i (N s/m) and the shares of
+    /// it whose faces bring an input motion.
     struct Node
     {
       std::array<unsigned int, dim> local_dofs;
       Tensor<2, dim>                dashpot;
+      std::vector<Input>            inputs;
     };
     bool              has_absorbing = false;
     std::vector<Node> nodes;
+    /// The boundaries' 'Absorbing input velocity', functions of t (the
+    /// parser's one coordinate).
+    std::vector<std::unique_ptr<FunctionParser<1>>> input_velocities;
+    /// The scene's rotation into the mesh's frame (the input velocities
+    /// are given in the scene's).
+    Tensor<2, dim> rotation;
   };
 } // namespace MPM
 

@@ -321,15 +321,17 @@ namespace MPM
      * The dashpots of the absorbing boundaries ('Type = absorbing',
      * AbsorbingBoundaries) on the nodal acceleration @p acceleration,
      * implicitly over the step @p dt from the brought velocity
-     * @p velocity, at the nodes with mass.
+     * @p velocity, at the nodes with mass, with the input motions at the
+     * time @p time.
      */
     void
     apply_absorbing(const NodalVector &mass,
                     const NodalVector &velocity,
                     NodalVector       &acceleration,
-                    const double       dt) const
+                    const double       dt,
+                    const double       time) const
     {
-      absorbing.apply(mass, velocity, acceleration, dt);
+      absorbing.apply(mass, velocity, acceleration, dt, time);
     }
 
     const AffineConstraints<double> &

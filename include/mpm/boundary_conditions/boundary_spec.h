@@ -77,6 +77,10 @@ namespace MPM
     /// rho c_s (tangential), in Pa s/m.
     double normal_impedance     = 0;
     double tangential_impedance = 0;
+    /// Type = absorbing: the velocity of the wave coming in through the
+    /// boundary, a function of t with dim components in the scene's frame
+    /// ('Absorbing input velocity'), or empty for none.
+    std::string input_velocity;
     /// 'Drainage = drained': pore water passes through this wall (its
     /// normal velocity is free there, the pore pressure zero).
     bool                            drained = false;
