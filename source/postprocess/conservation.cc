@@ -50,6 +50,13 @@ namespace MPM
         angular_momentum_scale0 = spin.second;
       }
 
+      /// @p error / @p scale, 0 where both are 0 (nothing moved).
+      static double
+      relative(const double error, const double scale)
+      {
+        return error == 0 ? 0. : error / std::max(1e-300, scale);
+      }
+
       void
       execute(const bool output_step) override
       {
@@ -60,14 +67,25 @@ namespace MPM
         const double mass_error = std::abs(s.mass - mass0) / mass0;
         // Relative to the impulse of gravity, or without gravity to the
         // initial momentum scale M |v|_mean.
+        // A scene at rest without gravity (set moving by a boundary) has
+        // neither: then the present motion's M |v|_mean and kinetic +
+        // strain energy are the scales (0 where nothing moves yet).
         const double momentum_scale =
-          g.norm() > 0 ? mass0 * g.norm() * t : momentum_scale0;
+          g.norm() > 0 ?
+            mass0 * g.norm() * t :
+            (momentum_scale0 > 0 ? momentum_scale0 : s.mass * s.mean_speed);
         const double momentum_error =
-          (s.momentum - expected).norm() / std::max(1e-300, momentum_scale);
+          relative((s.momentum - expected).norm(), momentum_scale);
         const double energy = s.kinetic_energy + s.strain_energy +
                               s.gravitational_potential_energy;
-        const double energy_scale = std::max(std::abs(energy0), mass0 * g.norm() * g.norm() * t * t / 2);
-        const double energy_change = (energy - energy0) / energy_scale;
+        double energy_scale =
+          std::max(std::abs(energy0), mass0 * g.norm() * g.norm() * t * t / 2);
+        if (!(energy_scale > 0))
+          energy_scale = s.kinetic_energy + s.strain_energy;
+        const double energy_change =
+          energy - energy0 == 0 ?
+            0. :
+            (energy - energy0) / std::max(1e-300, energy_scale);
         max_mass_error     = std::max(max_mass_error, mass_error);
         max_momentum_error = std::max(max_momentum_error, momentum_error);
         max_energy_change  = std::max(max_energy_change, std::abs(energy_change));
