@@ -17,7 +17,8 @@
 #     (doc/locking.csv; about 15 minutes), instead of 4.;
 #  4. with the argument 'collapse': the a = 2 granular column collapse
 #     (prm/column_collapse.prm as shipped) on 5, 2.5 and 1.25 mm meshes
-#     (about 1.5 hours; 'collapse-quick' stops at 2.5 mm).
+#     (about 1.5 hours with 2 x 2 points per cell, the shipped file's 3 x 3
+#     have 2.25 times as many; 'collapse-quick' stops at 2.5 mm).
 # Writes doc/convergence_bar.csv, doc/convergence_column.csv (and
 # doc/convergence_collapse.csv) and
 # doc/convergence.png.
