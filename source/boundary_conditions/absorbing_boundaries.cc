@@ -36,9 +36,10 @@ namespace MPM
                    numbers::invalid_unsigned_int;
       return numbers::invalid_unsigned_int;
     };
-    has_absorbing = std::any_of(specs.begin(), specs.end(), [](const auto &s) {
-      return s.type == BoundaryType::absorbing;
-    });
+    const bool has_absorbing =
+      std::any_of(specs.begin(), specs.end(), [](const auto &s) {
+        return s.type == BoundaryType::absorbing;
+      });
     if (!has_absorbing)
       return;
 

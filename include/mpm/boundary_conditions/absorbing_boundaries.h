@@ -68,21 +68,6 @@ namespace MPM
           const NodalVector                    &layout,
           const PeriodicNodeGroups             *periodic_nodes);
 
-    /// Whether a boundary is absorbing.
-    bool
-    any() const
-    {
-      return !nodes.empty() || has_absorbing;
-    }
-
-    /// Whether an absorbing boundary has an input motion (it then does
-    /// work on the material).
-    bool
-    has_input() const
-    {
-      return !input_velocities.empty();
-    }
-
     /**
      * At each absorbing node with mass (@p mass > 0): replace the
      * acceleration @p acceleration by the one that takes the node from
@@ -114,7 +99,6 @@ namespace MPM
       Tensor<2, dim>                dashpot;
       std::vector<Input>            inputs;
     };
-    bool              has_absorbing = false;
     std::vector<Node> nodes;
     /// The boundaries' 'Absorbing input velocity', functions of t (the
     /// parser's one coordinate).
