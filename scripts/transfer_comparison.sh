@@ -36,8 +36,8 @@ for entry in "${schemes[@]}"; do
   "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/flume_usgs.prm" "${args[@]}" \
     --set "Output/Write particles=false" --set "Output/Directory=$out/flume-$name" \
     > "$out/flume-$name.log" 2>&1 || true
-  # 2 x 2 points per cell, the collapse's of doc/transfers.md's table (the
-  # shipped file has 3 x 3 since 2026-11-30).
+  # 2 x 2 points per cell, those of doc/transfers.md's table (the shipped
+  # file has 3 x 3).
   "$MPM_BUILD_DIR/mpm" "$MPM_ROOT/prm/column_collapse.prm" "${args[@]}" \
     --set "Material points/column/Points per cell=2" --set "Output/Write particles=false" --set "Output/Directory=$out/collapse-$name" \
     > "$out/collapse-$name.log" 2>&1 || true
