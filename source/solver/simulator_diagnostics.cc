@@ -268,9 +268,12 @@ namespace MPM
     if (pore_water.active() && props[pore_water.porosity_slot()] > 0)
       {
         // The point's water, n rho_w V: its motion, its compression
-        // (n V p^2 / (2 K_w)) and its weight; submerged, the still water's
-        // buoyancy on the skeleton in place of the weight (the water's
-        // weight and the hydrostatic pressure cancel).
+        // (n V p^2 / (2 K_w)) and the weight of the water it carried from
+        // the start (PoreWater::carried_water_mass(): so that the energy
+        // released does not depend on where the coordinates' origin is);
+        // submerged, the still water's buoyancy on the skeleton in place
+        // of the weight (the water's weight and the hydrostatic pressure
+        // cancel).
         const double n   = props[pore_water.porosity_slot()];
         const double V   = props[Layout::volume];
         const double m_w = pore_water.water_mass(props);
@@ -283,7 +286,8 @@ namespace MPM
           energy[2] += pore_water.displaced_water_mass(props) *
                        (time_stepping.gravity * x);
         else
-          energy[2] += -m_w * (time_stepping.gravity * x);
+          energy[2] +=
+            -pore_water.carried_water_mass(props) * (time_stepping.gravity * x);
       }
     return energy;
   }

@@ -330,6 +330,32 @@ namespace MPM
              props[PropertyLayout<dim>::volume];
     }
 
+    /**
+     * The water the point with properties @p props held at the start,
+     * rho_w n0 V0 (0 for a dry point), from its grains' volume (1 - n) V,
+     * which the porosity's update keeps (dn/dt = (1 - n) div v_s against
+     * dV/dt = V div v_s). The point's water, water_mass(), changes with
+     * its pores: water drawn in through a drained face as the skeleton
+     * dilates, pushed out as it compacts. The energies weigh this water
+     * instead: the weight of water that appears at a point had no
+     * potential energy to release, and weighing it would add m g y with
+     * y from the coordinates' arbitrary origin (a permeable flume
+     * "created" the potential energy of the water its dilating skeleton
+     * drew in, 0.27 m above the origin, and was stopped by the energy
+     * check).
+     */
+    double
+    carried_water_mass(const double *props) const
+    {
+      const double n = props[porosity_slot()];
+      if (n == 0)
+        return 0.;
+      const double n0 = material_porosity[static_cast<unsigned int>(
+        props[PropertyLayout<dim>::material_id])];
+      return water_density * n0 * (1 - n) / (1 - n0) *
+             props[PropertyLayout<dim>::volume];
+    }
+
     double
     get_bulk_modulus() const
     {
