@@ -339,10 +339,10 @@ namespace MPM
      * dilates, pushed out as it compacts. The energies weigh this water
      * instead: the weight of water that appears at a point had no
      * potential energy to release, and weighing it would add m g y with
-     * y from the coordinates' arbitrary origin (a permeable flume
-     * "created" the potential energy of the water its dilating skeleton
-     * drew in, 0.27 m above the origin, and was stopped by the energy
-     * check).
+     * y from the coordinates' arbitrary origin (weighed so, a permeable
+     * flume "creates" the potential energy of the water its dilating
+     * skeleton draws in, 0.27 m above the origin, and the energy check
+     * stops it).
      */
     double
     carried_water_mass(const double *props) const
