@@ -146,10 +146,11 @@ namespace MPM
   {
     using Layout = PropertyLayout<dim>;
     GlobalStatistics<dim> s;
-    // The pore water's mass (also for the periodic correction below), its
-    // momentum, and the saturated volume and sum V p.
+    // The pore water's mass, its momentum, and the saturated volume and
+    // sum V p; for the periodic correction below the water the energies
+    // weigh (carried from the start) and the still water displaced.
     double water_mass = 0, saturated_volume = 0, pressure_sum = 0,
-           displaced_mass = 0;
+           displaced_mass = 0, carried_mass = 0;
     Tensor<1, dim> water_momentum;
     s.time      = time;
     s.time_step = time_step;
@@ -174,6 +175,7 @@ namespace MPM
             const double m_w = pore_water.water_mass(props.data());
             water_mass += m_w;
             displaced_mass += pore_water.displaced_water_mass(props.data());
+            carried_mass += pore_water.carried_water_mass(props.data());
             water_momentum +=
               m_w * read_vector<dim>(&props[pore_water.velocity_slot()]);
             saturated_volume += props[Layout::volume];
@@ -210,10 +212,13 @@ namespace MPM
       {
         const Tensor<1, dim> shift = wrapped_mass_shift();
         // The shifts are the skeleton's (PointRelocation); the water
-        // wraps with it, taken in the ratio of the two masses now (exact
-        // for a uniform saturation).
+        // wraps with it, taken in the ratio of the water the energies
+        // weigh (energy_of_point()) to the skeleton's mass (exact for a
+        // uniform saturation).
         const double water_share =
-          pore_water.active() && s.mass > 0 ? water_mass / s.mass : 0.;
+          pore_water.active() && s.mass > 0 ?
+            Utilities::MPI::sum(carried_mass, mpi_communicator) / s.mass :
+            0.;
         // Submerged: the skeleton's buoyant weight instead.
         const double weight_share =
           pore_water.is_submerged() ?
