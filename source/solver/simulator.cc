@@ -197,6 +197,13 @@ namespace MPM
         TimerOutput::Scope t(timer, "pore water");
         pore_water.set_skeleton_velocity(nodal.velocity_new);
         weights->update_phase_points(pore_water);
+        if (NodalPressureRate<dim> *rate = pore_water.nodal_pressure_rate())
+          {
+            // The pressures from the points' rates averaged at the nodes.
+            weights->map_phase(*rate);
+            rate->compute_nodal_rates(weights->active_dofs());
+            weights->update_phase_points(*rate);
+          }
       }
     set_max_point_speed(weights->update_points_from_grid(remap_momentum));
   }

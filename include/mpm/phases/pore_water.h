@@ -11,6 +11,7 @@
 #include <mpm/material_points/point_generator.h>
 #include <mpm/material_points/property_layout.h>
 #include <mpm/materials/material_library.h>
+#include <mpm/phases/nodal_pressure_rate.h>
 #include <mpm/transfer/phase_kernel.h>
 
 #include <memory>
@@ -87,6 +88,8 @@ namespace MPM
     set_first_slot(const unsigned int slot)
     {
       first_slot = slot;
+      nodal_rate.set_slots(
+        {volumetric_rate_slot(), pressure_slot(), porosity_slot()});
     }
 
     /// @name Where a point keeps the water's data (from its first slot).
@@ -115,6 +118,14 @@ namespace MPM
     affine_slot() const
     {
       return first_slot + dim + 2;
+    }
+
+    /// The point's own volumetric rate of this step, with 'Pressure rate
+    /// averaging = node' (NodalPressureRate).
+    unsigned int
+    volumetric_rate_slot() const
+    {
+      return affine_slot() + (affine ? dim * dim : 0);
     }
     /// @}
 
@@ -192,7 +203,30 @@ namespace MPM
       time_step        = dt;
       flip_fraction    = flip;
       gravity          = g;
+      nodal_rate.set_time_step(dt);
     }
+
+    /**
+     * With 'Pressure rate averaging = node', the kernel that updates the
+     * pore pressures from the rates averaged at the nodes, to be run
+     * (map_phase(), compute_nodal_rates(), update_phase_points()) after
+     * update_phase_points() with this kernel, which then leaves the
+     * pressures alone; else nullptr.
+     */
+    NodalPressureRate<dim> *
+    nodal_pressure_rate()
+    {
+      return rate_averaging == RateAveraging::node ? &nodal_rate : nullptr;
+    }
+
+    /**
+     * 'Pressure projection = cell linear': the pore pressures of the
+     * saturated points @p props of one cell, at @p positions, replaced by
+     * their volume-weighted least-squares linear fit over the cell.
+     */
+    void
+    project_cell_pressures(const ArrayView<double *const>    &props,
+                           const ArrayView<const Point<dim>> &positions) const;
 
     /**
      * The water's and the skeleton's new nodal velocity with the drag
@@ -280,12 +314,13 @@ namespace MPM
                            &gradients,
       const Tensor<2, dim> &affine_fit) const override;
 
-    /// With 'Pressure rate averaging = cell' or 'Pressure projection = cell
-    /// linear'.
+    /// With 'Pressure rate averaging = cell', or 'Pressure projection =
+    /// cell linear' where this pass updates the pressures.
     bool
     averages_over_cells() const override
     {
-      return average_pressure_rate || project_pressure;
+      return rate_averaging == RateAveraging::cell ||
+             (project_pressure && rate_averaging != RateAveraging::node);
     }
 
     void
@@ -418,8 +453,17 @@ namespace MPM
     /// 'Water velocity transfer = affine', and whether it is in effect
     /// (set_skeleton_transfer()).
     bool affine_requested = false, affine = false;
-    /// 'Pressure rate averaging = cell'.
-    bool               average_pressure_rate = false;
+    /// 'Pressure rate averaging': the volumetric rate of a point's
+    /// pressure is its own, its cell's mean, or interpolated from the
+    /// nodes' means (NodalPressureRate).
+    enum class RateAveraging
+    {
+      none,
+      cell,
+      node
+    };
+    RateAveraging          rate_averaging = RateAveraging::cell;
+    NodalPressureRate<dim> nodal_rate;
     /// 'Pressure projection = cell linear'.
     bool               project_pressure = false;
     Tensor<1, dim> gravity;
