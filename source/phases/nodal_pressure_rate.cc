@@ -6,13 +6,14 @@ namespace MPM
   template <int dim>
   void
   NodalPressureRate<dim>::initialize(NodalFields         &nodal,
+                                     const NodalVector   &water_volume_sums,
                                      const double         K_w,
                                      const CellProjection cell_projection)
   {
+    volume_sums  = &water_volume_sums;
     bulk_modulus = K_w;
     project      = cell_projection;
     nodal.add(rate_sums, NodalFields::Ghosts::summed);
-    nodal.add(volume_sums, NodalFields::Ghosts::summed);
   }
 
 
@@ -25,7 +26,7 @@ namespace MPM
     // map_phase() has summed over the ranks.
     for (const unsigned int i : active_dofs)
       {
-        const double V = volume_sums.local_element(i);
+        const double V = volume_sums->local_element(i);
         rate_sums.local_element(i) =
           V > 0 ? rate_sums.local_element(i) / V : 0.;
       }
@@ -45,11 +46,10 @@ namespace MPM
     const double r = props[slots.rate];
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       {
-        const double NV = sf.value[i] * V;
+        const double NVr = sf.value[i] * V * r;
         for (unsigned int c = 0; c < dim; ++c)
           {
-            sums[0][i][c] += NV * r;
-            sums[1][i][c] += NV;
+            sums[0][i][c] += NVr;
           }
       }
   }

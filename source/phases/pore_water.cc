@@ -214,6 +214,7 @@ namespace MPM
     if (rate_averaging == RateAveraging::node)
       nodal_rate.initialize(
         nodal,
+        volume_sums,
         bulk_modulus,
         project_pressure ?
           typename NodalPressureRate<dim>::CellProjection(

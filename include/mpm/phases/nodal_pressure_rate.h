@@ -23,7 +23,9 @@ namespace MPM
    * slot,
    *
    *  1. the particle-to-grid pass (ParticleGridWeights::map_phase())
-   *     sums sum_p N_ip V_p r_p and sum_p N_ip V_p at the nodes;
+   *     sums sum_p N_ip V_p r_p at the nodes (sum_p N_ip V_p is the
+   *     water's own, from its pass of the step: the same points, weights
+   *     and volumes);
    *  2. compute_nodal_rates() divides them: R_i, the volume-weighted mean
    *     rate of the points around node i;
    *  3. the grid-to-particle pass (update_phase_points()) changes each
@@ -67,12 +69,15 @@ namespace MPM
                          const ArrayView<const Point<dim>> &)>;
 
     /**
-     * Registers the kernel's nodal fields with @p nodal. @p bulk_modulus:
-     * the water's K_w. @p project: the projection of a cell's pressures
-     * after their update, or empty for none.
+     * Registers the kernel's nodal field with @p nodal. @p volume_sums:
+     * sum_p N_ip V_p over the saturated points, in every component, as
+     * the water's particle-to-grid pass of the step leaves it.
+     * @p bulk_modulus: the water's K_w. @p project: the projection of a
+     * cell's pressures after their update, or empty for none.
      */
     void
     initialize(NodalFields         &nodal,
+               const NodalVector   &volume_sums,
                const double         bulk_modulus,
                const CellProjection project);
 
@@ -100,10 +105,10 @@ namespace MPM
     Targets
     grid_targets() override
     {
-      return {{&rate_sums, &volume_sums}};
+      return {{&rate_sums}};
     }
 
-    /// N V r and N V of a saturated point, in every component.
+    /// N V r of a saturated point, in every component.
     void
     add_to_grid(const double                *props,
                 const Q1ShapeFunctions<dim> &sf,
@@ -146,10 +151,10 @@ namespace MPM
     double         bulk_modulus = 0;
     double         time_step    = 0;
     CellProjection project;
+    const NodalVector *volume_sums = nullptr;
 
-    /// sum N V r, then R (compute_nodal_rates()); and sum N V; in every
-    /// component.
-    NodalVector rate_sums, volume_sums;
+    /// sum N V r, then R (compute_nodal_rates()), in every component.
+    NodalVector rate_sums;
   };
 } // namespace MPM
 
