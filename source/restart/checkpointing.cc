@@ -190,6 +190,7 @@ namespace MPM
   Checkpointing<dim>::write(
     const parallel::distributed::Triangulation<dim> &triangulation,
     Particles::ParticleHandler<dim>                 &particle_handler,
+    const std::vector<std::string>                  &point_slots,
     const std::string                               &state) const
   {
     const MPI_Comm comm     = triangulation.get_communicator();
@@ -218,6 +219,15 @@ namespace MPM
           AssertThrow(out,
                       ExcMessage("Could not write the checkpoint state " +
                                  (fresh / "state").string()));
+        }
+        {
+          std::ofstream out(fresh / "point_slots");
+          for (const std::string &name : point_slots)
+            out << name << '\n';
+          out.close();
+          AssertThrow(out,
+                      ExcMessage("Could not write the checkpoint's slots " +
+                                 (fresh / "point_slots").string()));
         }
         write_manifest(fresh);
         // The complete new checkpoint replaces the old one.
@@ -249,7 +259,8 @@ namespace MPM
   std::string
   Checkpointing<dim>::read(
     parallel::distributed::Triangulation<dim> &triangulation,
-    Particles::ParticleHandler<dim>           &particle_handler) const
+    Particles::ParticleHandler<dim>           &particle_handler,
+    const std::vector<std::string>            &point_slots) const
   {
     const MPI_Comm comm = triangulation.get_communicator();
     // Rank 0 checks, every rank learns the verdict.
@@ -265,6 +276,25 @@ namespace MPM
                     "output directory of the run to resume.";
         else
           problem = check_manifest(folder);
+        // Checkpoints written before the slots were recorded have no
+        // such file: read as they are.
+        std::ifstream slots_file(fs::path(folder) / "point_slots");
+        if (problem.empty() && slots_file)
+          {
+            std::vector<std::string> written;
+            for (std::string name; std::getline(slots_file, name);)
+              written.push_back(name);
+            if (written != point_slots)
+              problem =
+                "The points of the checkpoint " + folder + " have " +
+                std::to_string(written.size()) +
+                " property slots, the parameters of this run lay out " +
+                std::to_string(point_slots.size()) +
+                " (a parameter that adds or removes point data, e.g. the "
+                "transfer scheme or 'Pore water/Pressure rate averaging', "
+                "differs from the checkpointed run's): resume with the "
+                "parameters of that run.";
+          }
       }
     folder  = Utilities::MPI::broadcast(comm, folder, 0);
     problem = Utilities::MPI::broadcast(comm, problem, 0);

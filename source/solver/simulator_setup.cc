@@ -166,7 +166,9 @@ namespace MPM
     if (checkpointing.resume())
       {
         // The mesh with its partition and the points as they were.
-        state = checkpointing.read(grid.triangulation, particle_handler);
+        state = checkpointing.read(grid.triangulation,
+                                   particle_handler,
+                                   point_properties.names());
         grid.setup_partition_data();
         setup_nodal_fields();
       }

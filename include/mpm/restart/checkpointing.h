@@ -78,24 +78,32 @@ namespace MPM
 
     /**
      * Write a checkpoint of @p triangulation with the points of
-     * @p particle_handler and the simulator's @p state (the same on every
-     * rank; rank 0 writes it). Collective. Returns the size in bytes.
+     * @p particle_handler, the names of their property slots
+     * @p point_slots (PointProperties::names()) and the simulator's
+     * @p state (the same on every rank; rank 0 writes it). Collective.
+     * Returns the size in bytes.
      */
     std::size_t
     write(const parallel::distributed::Triangulation<dim> &triangulation,
           Particles::ParticleHandler<dim>                 &particle_handler,
+          const std::vector<std::string>                  &point_slots,
           const std::string                               &state) const;
 
     /**
-     * Check the last checkpoint against its manifest, load the mesh and the
-     * points into @p triangulation (which must hold the coarse mesh only)
-     * and @p particle_handler (initialized on it), and return the
-     * simulator's state. Collective; throws an InputError naming the file
-     * if the checkpoint is missing, truncated or damaged.
+     * Check the last checkpoint against its manifest and its points'
+     * slots against @p point_slots (the parameters of the resumed run
+     * lay out the points' properties, and the points cannot be read back
+     * into another layout), load the mesh and the points into
+     * @p triangulation (which must hold the coarse mesh only) and
+     * @p particle_handler (initialized on it), and return the simulator's
+     * state. Collective; throws an InputError naming the file if the
+     * checkpoint is missing, truncated or damaged, or its points' slots
+     * differ.
      */
     std::string
     read(parallel::distributed::Triangulation<dim> &triangulation,
-         Particles::ParticleHandler<dim>           &particle_handler) const;
+         Particles::ParticleHandler<dim>           &particle_handler,
+         const std::vector<std::string>            &point_slots) const;
 
   private:
     /**
