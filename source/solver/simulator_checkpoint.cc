@@ -177,11 +177,10 @@ namespace MPM
     TimerOutput::Scope t(timer, "checkpoint");
     const auto start = std::chrono::steady_clock::now();
     point_relocation.prepare_for_checkpoint(particle_handler);
-    const std::size_t bytes =
-      checkpointing.write(grid.triangulation,
-                                  particle_handler,
-                                  point_properties.names(),
-                                  serialize_state());
+    const std::size_t bytes = checkpointing.write(grid.triangulation,
+                                                  particle_handler,
+                                                  point_properties.names(),
+                                                  serialize_state());
     pcout << "Checkpoint at step " << step << ", t = " << time << " s: "
           << bytes / 1e6 << " MB in "
           << std::chrono::duration<double>(std::chrono::steady_clock::now() -
