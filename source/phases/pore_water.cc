@@ -136,6 +136,23 @@ namespace MPM
       "removes little (a saturated collapse: -2.8 ... +2.6 kPa at rest "
       "against -0.7 ... +1.0 kPa with 3): run saturated flows with 3. "
       "'none': each point keeps its own.");
+    prm.declare_entry(
+      "Free surface volume fraction",
+      "0.25",
+      Patterns::Double(0, 1),
+      "The saturated points of a cell whose volume fills less than this "
+      "share of the cell lie at a free surface and are drained: their "
+      "pore pressure is set to 0 after each step (the excess over the "
+      "still water's with 'Submerged'). Without it a lone point at a "
+      "flow's front, or a thin sheet of points, keeps the pressure its own "
+      "volumetric rate gives it, and where its weights on some nodes are "
+      "small the water's stiffness there is not bounded by the step's "
+      "wave speed: its pressure alternates in sign and grows (the "
+      "saturated USGS flume, affine water: a front point on the runout "
+      "after its CPDI domain was reset next to the bed, -1 MPa within 12 "
+      "steps, then thrown out of the mesh; doc/pore_water.md, 'A drained "
+      "free surface'). 0: no point is drained this way (the weak form's "
+      "natural condition p = 0 at a free surface alone).");
     prm.leave_subsection();
   }
 
@@ -154,6 +171,7 @@ namespace MPM
                                   averaging == "cell" ? RateAveraging::cell :
                                                         RateAveraging::none;
     project_pressure      = prm.get("Pressure projection") == "cell linear";
+    free_surface_fraction = prm.get_double("Free surface volume fraction");
     affine_requested      = prm.get("Water velocity transfer") == "affine";
     submerged             = prm.get_bool("Submerged");
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
@@ -216,11 +234,12 @@ namespace MPM
         nodal,
         volume_sums,
         bulk_modulus,
-        project_pressure ?
+        project_pressure || free_surface_fraction > 0 ?
           typename NodalPressureRate<dim>::CellProjection(
             [this](const ArrayView<double *const>    &props,
-                   const ArrayView<const Point<dim>> &positions) {
-              project_cell_pressures(props, positions);
+                   const ArrayView<const Point<dim>> &positions,
+                   const double                       cell_volume) {
+              finish_cell_pressures(props, positions, cell_volume);
             }) :
           typename NodalPressureRate<dim>::CellProjection());
   }
@@ -585,13 +604,39 @@ namespace MPM
 
   template <int dim>
   void
-  PoreWater<dim>::finish_cell(
-    const ArrayView<double *const>    &props,
-    const ArrayView<const Point<dim>> &positions) const
+  PoreWater<dim>::finish_cell(const ArrayView<double *const>    &props,
+                              const ArrayView<const Point<dim>> &positions,
+                              const double cell_volume) const
   {
-    // With nodal rates the pressures are updated, and projected, in
+    // With nodal rates the pressures are updated, and finished, in
     // NodalPressureRate's pass.
-    if (project_pressure && rate_averaging != RateAveraging::node)
+    if (rate_averaging != RateAveraging::node)
+      finish_cell_pressures(props, positions, cell_volume);
+  }
+
+
+  template <int dim>
+  void
+  PoreWater<dim>::finish_cell_pressures(
+    const ArrayView<double *const>    &props,
+    const ArrayView<const Point<dim>> &positions,
+    const double                       cell_volume) const
+  {
+    if (free_surface_fraction > 0)
+      {
+        double saturated_volume = 0;
+        for (unsigned int q = 0; q < props.size(); ++q)
+          if (props[q][porosity_slot()] > 0)
+            saturated_volume += props[q][PropertyLayout<dim>::volume];
+        if (saturated_volume < free_surface_fraction * cell_volume)
+          {
+            for (unsigned int q = 0; q < props.size(); ++q)
+              if (props[q][porosity_slot()] > 0)
+                props[q][pressure_slot()] = 0;
+            return;
+          }
+      }
+    if (project_pressure)
       project_cell_pressures(props, positions);
   }
 

@@ -62,18 +62,20 @@ namespace MPM
       unsigned int porosity;
     };
 
-    /// A cell's points together after their update: their properties and
-    /// positions (PoreWater::project_cell_pressures()).
+    /// A cell's points together after their update: their properties,
+    /// positions and the cell's volume (PoreWater::finish_cell()).
     using CellProjection =
       std::function<void(const ArrayView<double *const> &,
-                         const ArrayView<const Point<dim>> &)>;
+                         const ArrayView<const Point<dim>> &,
+                         const double)>;
 
     /**
      * Registers the kernel's nodal field with @p nodal. @p volume_sums:
      * sum_p N_ip V_p over the saturated points, in every component, as
      * the water's particle-to-grid pass of the step leaves it.
-     * @p bulk_modulus: the water's K_w. @p project: the projection of a
-     * cell's pressures after their update, or empty for none.
+     * @p bulk_modulus: the water's K_w. @p project: what the water does
+     * with a cell's pressures after their update (the projection, the
+     * drained free surface), or empty for nothing.
      */
     void
     initialize(NodalFields         &nodal,
@@ -130,7 +132,8 @@ namespace MPM
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &,
       const Tensor<2, dim> &) const override;
 
-    /// With a projection: then finish_cell() applies it.
+    /// With a projection or a drained free surface: then finish_cell()
+    /// applies it.
     bool
     averages_over_cells() const override
     {
@@ -139,10 +142,11 @@ namespace MPM
 
     void
     finish_cell(const ArrayView<double *const>    &props,
-                const ArrayView<const Point<dim>> &positions) const override
+                const ArrayView<const Point<dim>> &positions,
+                const double                       cell_volume) const override
     {
       if (project)
-        project(props, positions);
+        project(props, positions, cell_volume);
     }
     /// @}
 

@@ -40,10 +40,11 @@ namespace MPM
    *  - at each node, the two momentum equations with the drag implicit
    *    (couple()), m_s (v_s' - v_s) / dt = F_s + Q (v_w' - v_s') and
    *    m_w (v_w' - v_w) / dt = F_w - Q (v_w' - v_s'), solved as a 2 x 2
-   *    system per component: unconditionally stable in the drag, so that a low permeability does not shorten the step. The
-   *    skeleton's solution enters the dry nodal update as its force
-   *    (friction and walls act on it as on a dry skeleton); the water is
-   *    held by the walls' normal constraints (impermeable walls);
+   *    system per component: unconditionally stable in the drag, so that a low
+   * permeability does not shorten the step. The skeleton's solution enters the
+   * dry nodal update as its force (friction and walls act on it as on a dry
+   * skeleton); the water is held by the walls' normal constraints (impermeable
+   * walls);
    *  - grid to particle (update_points()): v_w by the FLIP/PIC share of
    *    the transfer scheme (PIC under APIC), then p from the water's
    *    balance dp = -(K_w / n) ((1 - n) div v_s + n div v_w) dt and
@@ -53,8 +54,10 @@ namespace MPM
    * A boundary without a wall drains, and so does a free surface inside
    * the mesh: the weak form has no pressure term there, which is p = 0; a
    * boundary with a 'Pore pressure' adds the term of its p_b
-   * (BoundaryPorePressures). Local damping acts on the mixture in
-   * couple().
+   * (BoundaryPorePressures). The points of a nearly empty cell ('Free
+   * surface volume fraction') are drained outright (finish_cell_pressures()):
+   * a lone point's water is not held by the step's wave speed. Local damping
+   * acts on the mixture in couple().
    */
   template <int dim>
   class PoreWater : public PhaseKernel<dim>
@@ -315,17 +318,29 @@ namespace MPM
       const Tensor<2, dim> &affine_fit) const override;
 
     /// With 'Pressure rate averaging = cell', or 'Pressure projection =
-    /// cell linear' where this pass updates the pressures.
+    /// cell linear' or a 'Free surface volume fraction' where this pass
+    /// updates the pressures.
     bool
     averages_over_cells() const override
     {
       return rate_averaging == RateAveraging::cell ||
-             (project_pressure && rate_averaging != RateAveraging::node);
+             ((project_pressure || free_surface_fraction > 0) &&
+              rate_averaging != RateAveraging::node);
     }
 
     void
     finish_cell(const ArrayView<double *const>    &props,
-                const ArrayView<const Point<dim>> &positions) const override;
+                const ArrayView<const Point<dim>> &positions,
+                const double                       cell_volume) const override;
+
+    /// What finish_cell() does with the pressures of one cell's points,
+    /// in whichever pass updates them: drained if they fill less than
+    /// 'Free surface volume fraction' of the cell's volume @p cell_volume,
+    /// else projected ('Pressure projection').
+    void
+    finish_cell_pressures(const ArrayView<double *const>    &props,
+                          const ArrayView<const Point<dim>> &positions,
+                          const double                       cell_volume) const;
 
     /// The point's volumetric rate (1 - n) div v_s + n div v_w and its
     /// volume (0 for a dry point).
@@ -466,6 +481,8 @@ namespace MPM
     NodalPressureRate<dim> nodal_rate;
     /// 'Pressure projection = cell linear'.
     bool               project_pressure = false;
+    /// 'Free surface volume fraction' (0: none).
+    double             free_surface_fraction = 0;
     Tensor<1, dim> gravity;
     const NodalVector *skeleton_velocity = nullptr;
 

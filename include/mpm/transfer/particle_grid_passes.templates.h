@@ -997,7 +997,8 @@ namespace MPM
         scratch.positions.push_back(point->get_location());
       }
     kernel.finish_cell(ArrayView<double *const>(&this->points[first], n),
-                       make_array_view(scratch.positions));
+                       make_array_view(scratch.positions),
+                       first_point->get_surrounding_cell()->measure());
   }
 } // namespace MPM
 

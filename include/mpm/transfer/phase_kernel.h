@@ -140,14 +140,18 @@ namespace MPM
     /**
      * After update_point_with_cell_mean() for every point of one cell: a
      * last look at the cell's points together, with their positions
-     * @p positions (e.g. a field fitted over the cell). Nothing by default.
+     * @p positions and the cell's volume @p cell_volume (e.g. a field
+     * fitted over the cell, or the share of the cell the points fill).
+     * Nothing by default.
      */
     virtual void
     finish_cell(const ArrayView<double *const>    &props,
-                const ArrayView<const Point<dim>> &positions) const
+                const ArrayView<const Point<dim>> &positions,
+                const double                       cell_volume) const
     {
       (void)props;
       (void)positions;
+      (void)cell_volume;
     }
   };
 } // namespace MPM
