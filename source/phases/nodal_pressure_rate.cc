@@ -5,14 +5,14 @@ namespace MPM
 {
   template <int dim>
   void
-  NodalPressureRate<dim>::initialize(NodalFields         &nodal,
-                                     const NodalVector   &water_volume_sums,
-                                     const double         K_w,
-                                     const CellProjection cell_projection)
+  NodalPressureRate<dim>::initialize(NodalFields       &nodal,
+                                     const NodalVector &water_volume_sums,
+                                     const double       K_w,
+                                     const CellFinish   cell_finish)
   {
     volume_sums  = &water_volume_sums;
     bulk_modulus = K_w;
-    project      = cell_projection;
+    finish_pressures = cell_finish;
     nodal.add(rate_sums, NodalFields::Ghosts::summed);
   }
 

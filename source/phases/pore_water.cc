@@ -235,13 +235,13 @@ namespace MPM
         volume_sums,
         bulk_modulus,
         project_pressure || free_surface_fraction > 0 ?
-          typename NodalPressureRate<dim>::CellProjection(
+          typename NodalPressureRate<dim>::CellFinish(
             [this](const ArrayView<double *const>    &props,
                    const ArrayView<const Point<dim>> &positions,
                    const double                       cell_volume) {
               finish_cell_pressures(props, positions, cell_volume);
             }) :
-          typename NodalPressureRate<dim>::CellProjection());
+          typename NodalPressureRate<dim>::CellFinish());
   }
 
 

@@ -64,24 +64,23 @@ namespace MPM
 
     /// A cell's points together after their update: their properties,
     /// positions and the cell's volume (PoreWater::finish_cell()).
-    using CellProjection =
-      std::function<void(const ArrayView<double *const> &,
-                         const ArrayView<const Point<dim>> &,
-                         const double)>;
+    using CellFinish = std::function<void(const ArrayView<double *const> &,
+                                          const ArrayView<const Point<dim>> &,
+                                          const double)>;
 
     /**
      * Registers the kernel's nodal field with @p nodal. @p volume_sums:
      * sum_p N_ip V_p over the saturated points, in every component, as
      * the water's particle-to-grid pass of the step leaves it.
-     * @p bulk_modulus: the water's K_w. @p project: what the water does
+     * @p bulk_modulus: the water's K_w. @p finish: what the water does
      * with a cell's pressures after their update (the projection, the
      * drained free surface), or empty for nothing.
      */
     void
-    initialize(NodalFields         &nodal,
-               const NodalVector   &volume_sums,
-               const double         bulk_modulus,
-               const CellProjection project);
+    initialize(NodalFields       &nodal,
+               const NodalVector &volume_sums,
+               const double       bulk_modulus,
+               const CellFinish   finish);
 
     /// Where the points keep their data (known once the point properties
     /// are laid out).
@@ -137,7 +136,7 @@ namespace MPM
     bool
     averages_over_cells() const override
     {
-      return static_cast<bool>(project);
+      return static_cast<bool>(finish_pressures);
     }
 
     void
@@ -145,8 +144,8 @@ namespace MPM
                 const ArrayView<const Point<dim>> &positions,
                 const double                       cell_volume) const override
     {
-      if (project)
-        project(props, positions, cell_volume);
+      if (finish_pressures)
+        finish_pressures(props, positions, cell_volume);
     }
     /// @}
 
@@ -154,7 +153,7 @@ namespace MPM
     Slots          slots{0, 0, 0};
     double         bulk_modulus = 0;
     double         time_step    = 0;
-    CellProjection project;
+    CellFinish         finish_pressures;
     const NodalVector *volume_sums = nullptr;
 
     /// sum N V r, then R (compute_nodal_rates()), in every component.

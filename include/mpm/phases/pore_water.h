@@ -40,11 +40,11 @@ namespace MPM
    *  - at each node, the two momentum equations with the drag implicit
    *    (couple()), m_s (v_s' - v_s) / dt = F_s + Q (v_w' - v_s') and
    *    m_w (v_w' - v_w) / dt = F_w - Q (v_w' - v_s'), solved as a 2 x 2
-   *    system per component: unconditionally stable in the drag, so that a low
-   * permeability does not shorten the step. The skeleton's solution enters the
-   * dry nodal update as its force (friction and walls act on it as on a dry
-   * skeleton); the water is held by the walls' normal constraints (impermeable
-   * walls);
+   *    system per component: unconditionally stable in the drag, so
+   *    that a low permeability does not shorten the step. The skeleton's
+   *    solution enters the dry nodal update as its force (friction and
+   *    walls act on it as on a dry skeleton); the water is held by the
+   *    walls' normal constraints (impermeable walls);
    *  - grid to particle (update_points()): v_w by the FLIP/PIC share of
    *    the transfer scheme (PIC under APIC), then p from the water's
    *    balance dp = -(K_w / n) ((1 - n) div v_s + n div v_w) dt and
