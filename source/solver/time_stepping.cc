@@ -61,16 +61,15 @@ namespace MPM
         "Volumetric strain averaging",
         "none",
         Patterns::Selection("none|cell"),
-        "'cell': each point's volumetric strain rate (the trace "
-        "of its velocity gradient) is replaced by the volume-weighted mean "
-        "over the points of its cell before the stress and volume update, "
-        "the deviatoric part kept (an F-bar-type anti-locking: plastically "
-        "incompressible flow with several points per cell locks without "
-        "it, and the runouts of granular scenes then move with the mesh; "
-        "doc/convergence.md). The forces take the transpose: each point's "
-        "deviatoric stress with its cell's mean pressure, so that the "
-        "nodal forces' work is the points' stress power. 'none': each "
-        "point's own rate and stress.");
+        "'cell': each point's volumetric strain rate (the trace of its "
+        "velocity gradient) is replaced by the volume-weighted mean over "
+        "the points of its cell before the stress and volume update, the "
+        "deviatoric part kept (an F-bar-type anti-locking for plastically "
+        "incompressible flow with several points per cell; "
+        "doc/convergence.md). With a dilating material (dilation angle > "
+        "0) and FLIP it was measured to create energy once the material "
+        "flows (doc/slope_stability.md): use 'none' there. 'none': each "
+        "point's own.");
       prm.declare_entry("Gravity",
                         dim == 2 ? "0, -9.81" : "0, 0, -9.81",
                         Patterns::List(Patterns::Double(), dim, dim),

@@ -232,27 +232,6 @@ namespace MPM
     /// gather_point_transfer_data()'s copy, by point.
     std::vector<PointTransferData> point_transfer_data;
 
-    /**
-     * With 'Volumetric strain averaging = cell' the stress update takes
-     * each point's deviatoric rate and its cell's mean volumetric rate;
-     * the forces' transpose of that pairs each point's deviatoric stress
-     * with its cell's volume-weighted mean (in-plane) pressure. Then the
-     * nodal forces' work is the points' stress power, and no energy is
-     * created by the mismatch (doc/convergence.md).
-     */
-    static Tensor<2, dim>
-    with_pressure(Tensor<2, dim> sigma, const double pressure);
-
-    /// The volume-weighted mean of trace(sigma) / dim over @p cell's
-    /// points (linear weights: a cell's entries are its points).
-    double
-    cell_mean_pressure(const ActiveCell &cell) const;
-
-    /// gather_point_transfer_data()'s stresses shifted to their own
-    /// cells' mean pressure (CPDI: point_cell_begin).
-    void
-    shift_to_cell_mean_pressure();
-
     /// Entry @p k's share of the forces of its point (mass @p m, volume
     /// @p V, in-plane stress @p sigma), -V sigma grad w_i + w_i m g, added
     /// to @p forces at its cell's vertices.

@@ -124,10 +124,6 @@ namespace MPM
     const Apic<dim>     *apic  = this->get_transfer().apic();
     if (!Weights::entries_are_points)
       gather_point_transfer_data(with_forces);
-    const bool mean_pressure_forces =
-      with_forces && this->get_point_update().averages_volumetric_strain();
-    if (mean_pressure_forces && !Weights::entries_are_points)
-      shift_to_cell_mean_pressure();
     if (apic != nullptr && !Weights::entries_are_points)
       {
         // APIC: each point's affine matrix at its weights of this step
@@ -154,10 +150,6 @@ namespace MPM
         VertexValues     &momentum = sums[1];
         VertexValues     &forces   = sums[2];
         const unsigned int end     = cell.first_entry + cell.n_points;
-        const double       cell_pressure =
-          Weights::entries_are_points && mean_pressure_forces ?
-                  cell_mean_pressure(cell) :
-                  0.;
         for (unsigned int k = cell.first_entry; k < end; ++k)
           {
             const unsigned int p     = weights().point_of_entry(k);
@@ -189,16 +181,12 @@ namespace MPM
             if (with_forces)
               {
                 if constexpr (Weights::entries_are_points)
-                  add_entry_forces(
-                    k,
-                    m,
-                    props[Layout::volume],
-                    mean_pressure_forces ?
-                      with_pressure(PointTransferData::in_plane_stress(props),
-                                    cell_pressure) :
-                      PointTransferData::in_plane_stress(props),
-                    g,
-                    forces);
+                  add_entry_forces(k,
+                                   m,
+                                   props[Layout::volume],
+                                   PointTransferData::in_plane_stress(props),
+                                   g,
+                                   forces);
                 else
                   add_entry_forces(k,
                                    m,
@@ -225,10 +213,6 @@ namespace MPM
     const Tensor<1, dim> g = this->get_time_stepping().gravity;
     if (!Weights::entries_are_points)
       gather_point_transfer_data(true);
-    const bool mean_pressure_forces =
-      this->get_point_update().averages_volumetric_strain();
-    if (mean_pressure_forces && !Weights::entries_are_points)
-      shift_to_cell_mean_pressure();
     this->template for_active_cells<1>(
       {{&this->get_nodal_fields().force}},
       [&](const unsigned int c,
@@ -236,22 +220,14 @@ namespace MPM
           std::array<VertexValues, 1> &forces) {
         const ActiveCell  &cell = this->active_cells[c];
         const unsigned int end  = cell.first_entry + cell.n_points;
-        const double       cell_pressure =
-          Weights::entries_are_points && mean_pressure_forces ?
-                  cell_mean_pressure(cell) :
-                  0.;
         for (unsigned int k = cell.first_entry; k < end; ++k)
           if constexpr (Weights::entries_are_points)
             {
               const double *props = this->points[k];
-              const Tensor<2, dim> sigma =
-                PointTransferData::in_plane_stress(props);
               add_entry_forces(k,
                                props[Layout::mass],
                                props[Layout::volume],
-                               mean_pressure_forces ?
-                                 with_pressure(sigma, cell_pressure) :
-                                 sigma,
+                               PointTransferData::in_plane_stress(props),
                                g,
                                forces[0]);
             }
@@ -280,73 +256,6 @@ namespace MPM
     const auto &sf = this->shape_functions[k];
     for (unsigned int i = 0; i < n_vertices; ++i)
       forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
-  }
-
-
-  template <int dim, class Weights>
-  Tensor<2, dim>
-  ParticleGridPasses<dim, Weights>::with_pressure(Tensor<2, dim> sigma,
-                                                  const double   pressure)
-  {
-    const double shift = pressure - trace(sigma) / dim;
-    for (unsigned int d = 0; d < dim; ++d)
-      sigma[d][d] += shift;
-    return sigma;
-  }
-
-
-  template <int dim, class Weights>
-  double
-  ParticleGridPasses<dim, Weights>::cell_mean_pressure(
-    const ActiveCell &cell) const
-  {
-    using Layout              = PropertyLayout<dim>;
-    double             volume = 0;
-    double             sum    = 0;
-    const unsigned int end    = cell.first_entry + cell.n_points;
-    for (unsigned int k = cell.first_entry; k < end; ++k)
-      {
-        const double *props = this->points[k];
-        const double  V     = props[Layout::volume];
-        volume += V;
-        sum += V * trace(PointTransferData::in_plane_stress(props));
-      }
-    return volume > 0 ? sum / (dim * volume) : 0.;
-  }
-
-
-  template <int dim, class Weights>
-  void
-  ParticleGridPasses<dim, Weights>::shift_to_cell_mean_pressure()
-  {
-    const unsigned int n_point_cells =
-      point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
-    for_each_chunk(n_point_cells,
-                   this->cell_chunk_size,
-                   [&](const unsigned int,
-                       const unsigned int first,
-                       const unsigned int last) {
-                     for (unsigned int c = first; c < last; ++c)
-                       {
-                         const unsigned int begin  = point_cell_begin[c];
-                         const unsigned int end    = point_cell_begin[c + 1];
-                         double             volume = 0;
-                         double             sum    = 0;
-                         for (unsigned int p = begin; p < end; ++p)
-                           {
-                             volume += point_transfer_data[p].volume;
-                             sum += point_transfer_data[p].volume *
-                                    trace(point_transfer_data[p].stress);
-                           }
-                         if (!(volume > 0))
-                           continue;
-                         const double pressure = sum / (dim * volume);
-                         for (unsigned int p = begin; p < end; ++p)
-                           point_transfer_data[p].stress =
-                             with_pressure(point_transfer_data[p].stress,
-                                           pressure);
-                       }
-                   });
   }
 
 
