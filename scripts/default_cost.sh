@@ -11,9 +11,11 @@
 #                   points per cell, linear elastic, 241 steps);
 #        landslide  prm/landslide_valley_3d.prm refined once, 3 x 3 x 3
 #                   points per cell, to 0.3 s.
-# The blend: FLIP 0.98 per the file's CFL 0.5 step ('FLIP fraction time
-# step') on linear weights under MUSL, as the granular files shipped it; on
-# the block the paper code's path (FLIP 1 on linear weights under USF).
+# The default includes the cell's mean volumetric strain rate ('Volumetric
+# strain averaging = cell'). The blend: FLIP 0.98 per the file's CFL 0.5
+# step ('FLIP fraction time step') on linear weights under MUSL, without
+# the averaging, as the granular files shipped it; on the block the paper
+# code's path (FLIP 1 on linear weights under USF).
 #
 # Usage: scripts/default_cost.sh [N (default 3)] [CASE ...]
 set -euo pipefail
@@ -26,8 +28,8 @@ cases=("$@")
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-default="Transfer/Scheme=apic|Transfer/Particle-grid weights=cpdi|Time stepping/Update scheme=MUSL"
-blend="Transfer/Scheme=flip/pic blend|Transfer/FLIP fraction=0.98|Transfer/Particle-grid weights=linear|Time stepping/Update scheme=MUSL"
+default="Transfer/Scheme=apic|Transfer/Particle-grid weights=cpdi|Time stepping/Update scheme=MUSL|Time stepping/Volumetric strain averaging=cell"
+blend="Transfer/Scheme=flip/pic blend|Transfer/FLIP fraction=0.98|Transfer/Particle-grid weights=linear|Time stepping/Update scheme=MUSL|Time stepping/Volumetric strain averaging=none"
 # spec CASE PATH: the prm file and its settings, '|'-separated; then the bound.
 spec() {
   case "$1" in
@@ -55,7 +57,7 @@ echo "# $(date -u +%F), commit $(git -C "$MPM_ROOT" rev-parse --short HEAD), $(n
 printf '%-10s %8s %14s %14s %12s %12s %8s %6s\n' case points "blend (s)" "default (s)" "blend p-s/s" "default p-s/s" ratio bound
 for c in "${cases[@]}"; do
   flip_blend="$blend|Transfer/FLIP fraction time step=FLIPDT"
-  [ "$c" = block ] && flip_blend="Transfer/Scheme=flip/pic blend|Transfer/FLIP fraction=1|Transfer/Particle-grid weights=linear|Time stepping/Update scheme=USF"
+  [ "$c" = block ] && flip_blend="Transfer/Scheme=flip/pic blend|Transfer/FLIP fraction=1|Transfer/Particle-grid weights=linear|Time stepping/Update scheme=USF|Time stepping/Volumetric strain averaging=none"
   b_min="" d_min=""
   for i in $(seq "$n"); do
     read -r b_steps points t <<< "$(run "$c" "$flip_blend" "$c-blend-$i")"

@@ -88,6 +88,22 @@ namespace MPM
                "the affine water at CFL 0.3 and above; exact at CFL 0.5 "
                "with a memory of 1 mm; doc/boundary_conditions.md, "
                "'Sliding on Coulomb friction: a flutter').\n";
+    // Local damping (the quasi-static strength-reduction files) drains
+    // what the pairing feeds in until a layer runs far past failure.
+    if (time_stepping.average_volumetric_strain &&
+        transfer.scheme().flip_fraction(1e-6) > 0 &&
+        time_stepping.local_damping == 0 &&
+        !time_stepping.local_damping_function)
+      pcout << "Warning: 'Time stepping/Volumetric strain averaging = cell' "
+               "(the default) with a FLIP share ('Transfer/FLIP fraction' > "
+               "0): the stress update takes the cell's mean volumetric rate "
+               "while the forces take each point's own stress, and FLIP, "
+               "which does not damp, was measured to gain energy from that "
+               "once the material flows (an elastic wedge down the flume "
+               "stopped by the energy check within 0.6 s; a dilating "
+               "infinite slope; doc/convergence.md, 'Volumetric "
+               "locking'). Set 'Volumetric strain averaging = none' with "
+               "FLIP, or use the default 'Transfer/Scheme = apic'.\n";
     side_walls.initialize(nodal);
     if (!pore_water.active())
       for (const std::string &name :

@@ -59,17 +59,19 @@ namespace MPM
                         "settle a slope for 2 s and then release it.");
       prm.declare_entry(
         "Volumetric strain averaging",
-        "none",
+        "cell",
         Patterns::Selection("none|cell"),
-        "'cell': each point's volumetric strain rate (the trace of its "
-        "velocity gradient) is replaced by the volume-weighted mean over "
-        "the points of its cell before the stress and volume update, the "
-        "deviatoric part kept (an F-bar-type anti-locking for plastically "
-        "incompressible flow with several points per cell; "
-        "doc/convergence.md). With a dilating material (dilation angle > "
-        "0) and FLIP it was measured to create energy once the material "
-        "flows (doc/slope_stability.md): use 'none' there. 'none': each "
-        "point's own.");
+        "'cell' (default): each point's volumetric strain rate (the trace "
+        "of its velocity gradient) is replaced by the volume-weighted mean "
+        "over the points of its cell before the stress and volume update, "
+        "the deviatoric part kept (an F-bar-type anti-locking: plastically "
+        "incompressible flow with several points per cell locks without "
+        "it, and granular runouts then move with the mesh; "
+        "doc/convergence.md). The forces take each point's own stress. "
+        "With a FLIP share ('Transfer/Scheme = flip/pic blend', 'FLIP "
+        "fraction' > 0) it was measured to create energy once the material "
+        "flows (an elastic wedge down the flume, a dilating slope; mpm "
+        "warns): use 'none' there. 'none': each point's own rate.");
       prm.declare_entry("Gravity",
                         dim == 2 ? "0, -9.81" : "0, 0, -9.81",
                         Patterns::List(Patterns::Double(), dim, dim),

@@ -74,7 +74,7 @@ namespace MPM
     check_local_damping(const double alpha, const double time) const;
     /// Replace each point's volumetric strain rate by the volume-weighted
     /// mean over the points of its cell (anti-locking).
-    bool           average_volumetric_strain = false;
+    bool average_volumetric_strain = true;
     /// 'Gravity' as given, in the scene's frame (as the regions are).
     Tensor<1, dim> scene_gravity;
     /// Gravity in the mesh's frame, which the step works in
