@@ -101,9 +101,9 @@ namespace MPM
                "which does not damp, was measured to gain energy from that "
                "once the material flows (an elastic wedge down the flume "
                "stopped by the energy check within 0.6 s; a dilating "
-               "infinite slope; doc/convergence.md, 'Volumetric "
-               "locking'). Set 'Volumetric strain averaging = none' with "
-               "FLIP, or use the default 'Transfer/Scheme = apic'.\n";
+               "infinite slope; doc/convergence.md, 'Defaults'). Set "
+               "'Volumetric strain averaging = none' with FLIP, or use the "
+               "default 'Transfer/Scheme = apic'.\n";
     side_walls.initialize(nodal);
     if (!pore_water.active())
       for (const std::string &name :
