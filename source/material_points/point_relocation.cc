@@ -8,12 +8,13 @@
 #include <mpm/material_points/point_relocation.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <optional>
 #include <utility>
-#include <array>
 
 namespace MPM
 {
@@ -478,50 +479,88 @@ namespace MPM
     Point<dim>                      &x,
     PointLocation<dim>              &location)
   {
-    if (walls.empty() || overshoot_tolerance == 0 || !old_cell->at_boundary())
+    if (walls.empty() || overshoot_tolerance == 0)
       return false;
-    const InverseMappingResult<dim> result = invert_in(old_cell, x);
-    if (!result.success)
-      return false;
-    // Across each wall face of the cell (face f lies at xi_{f/2} = f % 2),
-    // the reference coordinate set back onto the face.
-    Point<dim> xi        = result.xi;
-    double     overshoot = 0;
-    for (const unsigned int f : old_cell->face_indices())
-      if (old_cell->face(f)->at_boundary() &&
-          walls.count(old_cell->face(f)->boundary_id()) != 0)
-        {
-          const unsigned int d     = f / 2;
-          const double       bound = f % 2;
-          const double       beyond =
-            f % 2 == 0 ? bound - xi[d] : xi[d] - bound;
-          if (beyond > 0)
+    // The reference coordinates of x in @p cell with those beyond a wall
+    // face of the cell (face f lies at xi_{f/2} = f % 2) set back onto the
+    // face; the largest such overshoot (0: beyond no wall). False if the
+    // map cannot be inverted there.
+    const auto onto_walls_of =
+      [&](const CellIterator &cell, Point<dim> &xi, double &overshoot) {
+        const InverseMappingResult<dim> result = invert_in(cell, x);
+        if (!result.success)
+          return false;
+        xi        = result.xi;
+        overshoot = 0;
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() &&
+              walls.count(cell->face(f)->boundary_id()) != 0)
             {
-              overshoot = std::max(overshoot, beyond);
-              xi[d]     = bound;
+              const unsigned int d     = f / 2;
+              const double       bound = f % 2;
+              const double beyond = f % 2 == 0 ? bound - xi[d] : xi[d] - bound;
+              if (beyond > 0)
+                {
+                  overshoot = std::max(overshoot, beyond);
+                  xi[d]     = bound;
+                }
             }
-        }
-    if (overshoot == 0 || overshoot > overshoot_tolerance)
-      return false;
-    const Point<dim> y = map_unit_to_real<dim>(
-      grid->cell_vertices(old_cell->active_cell_index()), xi);
-    if (inside_unit_cell(xi))
+        return true;
+      };
+    const auto put_back = [&](const Point<dim> &y, const double overshoot) {
+      ++stats.n_points_put_back;
+      stats.largest_put_back = std::max(stats.largest_put_back, (y - x).norm());
+      stats.largest_put_back_fraction =
+        std::max(stats.largest_put_back_fraction, overshoot);
+      x = y;
+      return true;
+    };
+
+    // Beyond a wall of its old cell: onto that wall, in the old cell or,
+    // if the point also crossed into a neighbour along the wall, in the
+    // neighbour the wall's continuation reaches.
+    Point<dim> xi;
+    double     overshoot = 0;
+    if (old_cell->at_boundary() && onto_walls_of(old_cell, xi, overshoot) &&
+        overshoot > 0 && overshoot <= overshoot_tolerance)
       {
-        location.cell  = old_cell;
-        location.xi    = xi;
-        location.found = true;
+        const Point<dim> y = map_unit_to_real<dim>(
+          grid->cell_vertices(old_cell->active_cell_index()), xi);
+        if (inside_unit_cell(xi))
+          {
+            location.cell  = old_cell;
+            location.xi    = xi;
+            location.found = true;
+          }
+        else
+          location = locate_point_by<dim>(invert_in, candidates, y);
+        if (location.found)
+          return put_back(y, overshoot);
       }
-    else
-      // Along the wall into a neighbour too.
-      location = locate_point_by<dim>(invert_in, candidates, y);
+
+    // Beyond the wall of a neighbour: where the ground turns up between
+    // the old cell and the neighbour (a concave kink), the old cell's wall
+    // continued passes below the neighbour's, and a point that slid across
+    // the kink and dipped below the neighbour's wall is found by neither.
+    // Onto the wall of the neighbour whose walls alone it crossed, by the
+    // least overshoot.
+    double best_overshoot = std::numeric_limits<double>::max();
+    for (const CellIterator &cell : candidates)
+      if (cell->at_boundary() && onto_walls_of(cell, xi, overshoot) &&
+          overshoot > 0 && overshoot <= overshoot_tolerance &&
+          overshoot < best_overshoot && inside_unit_cell(xi))
+        {
+          best_overshoot = overshoot;
+          location.cell  = cell;
+          location.xi    = xi;
+          location.found = true;
+        }
     if (!location.found)
       return false;
-    ++stats.n_points_put_back;
-    stats.largest_put_back = std::max(stats.largest_put_back, (y - x).norm());
-    stats.largest_put_back_fraction =
-      std::max(stats.largest_put_back_fraction, overshoot);
-    x = y;
-    return true;
+    return put_back(map_unit_to_real<dim>(grid->cell_vertices(
+                                            location.cell->active_cell_index()),
+                                          location.xi),
+                    best_overshoot);
   }
 
 

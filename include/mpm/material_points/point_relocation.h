@@ -44,9 +44,10 @@ namespace MPM
    * A point found in no cell (neither around its old cell nor by
    * GridTools::find_active_cell_around_point() in the whole mesh, which
    * every rank's triangulation covers) has crossed the boundary. If it
-   * crossed a wall of its old cell (a face on a boundary with a velocity
-   * condition, set_walls()) by at most 'Wall overshoot tolerance' of the
-   * cell, it is put back onto that face (put_back_onto_wall()): the mesh
+   * crossed a wall of its old cell or of a cell next to it (a face on a
+   * boundary with a velocity condition, set_walls()) by at most 'Wall
+   * overshoot tolerance' of the cell, it is put back onto that face
+   * (put_back_onto_wall()): the mesh
    * conforms to the ground, so a point sliding along it that dips below
    * the piecewise-(bi)linear surface by a millimetre is outside the mesh,
    * and the nodal velocities it moves with are tangent to the nodes'
@@ -278,8 +279,12 @@ namespace MPM
      * wall's, the map of the cell taken forward) and @p location to the
      * cell it then lies in (the old cell, or, if the point also crossed
      * into a neighbour along the wall, that neighbour, searched among
-     * @p candidates with @p invert_in). Returns whether it did; the point
-     * keeps its velocity and every property. Counted in the statistics.
+     * @p candidates with @p invert_in). Failing that, if it crossed the
+     * walls of one of the @p candidates and no other face of it (a point
+     * that slid across a concave kink of the ground, below which the old
+     * cell's wall continued passes), onto those walls of the candidate
+     * with the least overshoot. Returns whether it did; the point keeps
+     * its velocity and every property. Counted in the statistics.
      */
     template <typename InverseMap>
     bool
