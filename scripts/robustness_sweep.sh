@@ -9,14 +9,20 @@
 # Usage: scripts/robustness_sweep.sh [variants|shipped|all (default)] [CSV]
 # Writes the table to CSV (default doc/robustness_sweep.csv) and each run's
 # log and output to output-robustness-sweep/. MPM_SWEEP_ONLY=REGEX runs only
-# the cases whose name matches (e.g. 'dam-break' or 'shipped-flume').
+# the cases whose name matches (e.g. 'dam-break' or 'shipped-flume'); its
+# CSV defaults to output-robustness-sweep/robustness_sweep.csv.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mpm_setup Release
 which="${1:-all}"
-csv="${2:-$MPM_ROOT/doc/robustness_sweep.csv}"
 out="output-robustness-sweep"
 mkdir -p "$out"
+# A subset (MPM_SWEEP_ONLY) does not overwrite the doc's table.
+if [ -n "${MPM_SWEEP_ONLY:-}" ]; then
+  csv="${2:-$out/robustness_sweep.csv}"
+else
+  csv="${2:-$MPM_ROOT/doc/robustness_sweep.csv}"
+fi
 echo "name,file,settings,end_time_s,reached_s,result,points_start,points_end,warnings,steps,wall_s" > "$csv"
 
 # run NAME FILE END_TIME [SETTING ...]: one run; SETTING is 'path=value'.
@@ -36,17 +42,18 @@ run() {
   local start_points end_points steps wall reached result warnings
   start_points=$(grep -m1 -E "^dealii-mpm: " "$log" | sed -E 's/.* ([0-9]+) material points.*/\1/' || true)
   warnings=$(grep -c "^Warning" "$log" || true)
+  # The last statistics row: the end time, the time at rest where the file
+  # stops there, or the last output before a stop.
+  reached=$(awk '!/^#/ && NF {t = $1} END {print t}' "$out/$name/statistics" 2>/dev/null || true)
   if [ "$rc" -eq 0 ]; then
     local done_line
     done_line=$(grep '^Done:' "$log")
     steps=$(echo "$done_line" | awk '{print $2}')
     end_points=$(echo "$done_line" | awk '{print $4}')
     wall=$(echo "$done_line" | sed -E 's/.*wall time ([0-9.e+-]+) s.*/\1/')
-    reached=$(awk '!/^#/ && NF {t = $1} END {print t}' "$out/$name/statistics" 2>/dev/null || true)
     result="end reached"
   else
     steps="" end_points="" wall=""
-    reached=$(awk '!/^#/ && NF {t = $1} END {print t}' "$out/$name/statistics" 2>/dev/null || true)
     result="stopped (exit $rc): $(grep -v '^\s*$' "$log" | tail -1 | tr ',' ';' | cut -c1-160)"
   fi
   printf '%s,%s,"%s",%s,%s,"%s",%s,%s,%s,%s,%s\n' "$name" "$file" "$settings" "${end:-as shipped}" "$reached" \
