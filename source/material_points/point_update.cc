@@ -150,7 +150,16 @@ namespace MPM
       }
     if (!(volume > 0))
       return;
-    const double mean = trace / volume;
+    set_volumetric_part(grad_v, n, trace / volume);
+  }
+
+
+  template <int dim>
+  void
+  PointUpdate<dim>::set_volumetric_part(Tensor<2, dim>    *grad_v,
+                                        const unsigned int n,
+                                        const double       mean)
+  {
     for (unsigned int q = 0; q < n; ++q)
       {
         const double shift = (mean - dealii::trace(grad_v[q])) / dim;

@@ -95,8 +95,9 @@ namespace MPM
         time_stepping.local_damping == 0 &&
         !time_stepping.local_damping_function)
       pcout << "Warning: 'Time stepping/Volumetric strain averaging = cell' "
-               "(the default) with a FLIP share ('Transfer/FLIP fraction' > "
-               "0): the stress update takes the cell's mean volumetric rate "
+               "(the default) or 'patch' with a FLIP share ('Transfer/FLIP "
+               "fraction' > 0): the stress update takes an averaged volumetric "
+               "rate "
                "while the forces take each point's own stress, and FLIP, "
                "which does not damp, was measured to gain energy from that "
                "once the material flows (an elastic wedge down the flume "

@@ -135,6 +135,23 @@ namespace MPM
       return time_stepping.average_volumetric_strain;
     }
 
+    /// Whether the cells' means are averaged again over the cells around
+    /// each vertex ('Volumetric strain averaging = patch').
+    bool
+    averages_volumetric_strain_over_patches() const
+    {
+      return time_stepping.average_volumetric_strain_over_patches;
+    }
+
+    /**
+     * Set the traces of the velocity gradients @p grad_v of @p n points to
+     * @p mean, keeping the deviatoric parts.
+     */
+    static void
+    set_volumetric_part(Tensor<2, dim>    *grad_v,
+                        const unsigned int n,
+                        const double       mean);
+
     /**
      * Replace the trace of the velocity gradients @p grad_v of @p n points
      * (properties @p props) by their volume-weighted mean, keeping the

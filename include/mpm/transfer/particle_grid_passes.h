@@ -156,6 +156,24 @@ namespace MPM
     /// averaging).
     std::vector<std::vector<Tensor<2, dim>>> chunk_gradients;
 
+    /**
+     * 'Volumetric strain averaging = patch': from cell_rate_sums (per cell
+     * c of this step's loop: sum V_p tr(grad v_p) and sum V_p of its
+     * points), each vertex's volume-weighted mean over the cells around it
+     * (on every rank: the sums go through patch_sums, a nodal vector), and
+     * each cell's mean of its vertices' means in cell_patch_means[c].
+     * @p dofs_of(c) gives cell c's vertex entries (CellDofTable's).
+     * Sums in the order of the cells, so the same on any number of
+     * threads.
+     */
+    template <typename DofsOf>
+    void
+    patch_mean_rates(const DofsOf &dofs_of);
+
+    NodalVector                        patch_sums;
+    std::vector<std::array<double, 2>> cell_rate_sums;
+    std::vector<double>                cell_patch_means;
+
     /// Take over chunk_findings (in chunk order); the largest squared
     /// speed among them.
     double

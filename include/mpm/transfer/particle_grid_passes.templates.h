@@ -539,6 +539,53 @@ namespace MPM
 
 
   template <int dim, class Weights>
+  template <typename DofsOf>
+  void
+  ParticleGridPasses<dim, Weights>::patch_mean_rates(const DofsOf &dofs_of)
+  {
+    const unsigned int n_cells = cell_rate_sums.size();
+    const NodalVector &mass    = this->get_nodal_fields().mass;
+    if (patch_sums.get_partitioner() != mass.get_partitioner())
+      patch_sums.reinit(mass.get_partitioner());
+    // Zero what is read below and what compress() adds to: the entries of
+    // these cells' vertices (with their periodic copies), the owned
+    // entries of other ranks' ghosts, the ghosts.
+    const auto zero = [this](const unsigned int i) {
+      patch_sums.local_element(i) = 0;
+    };
+    for (unsigned int c = 0; c < n_cells; ++c)
+      for (const auto &vertex_dofs : dofs_of(c))
+        for (unsigned int k = 0; k < 2; ++k)
+          {
+            zero(vertex_dofs[k]);
+            this->get_periodic_nodes().for_each_copy(vertex_dofs[k], zero);
+          }
+    for (const auto &range : patch_sums.get_partitioner()->import_indices())
+      for (unsigned int i = range.first; i < range.second; ++i)
+        zero(i);
+    patch_sums.zero_out_ghost_values();
+    // Components 0 and 1 of a vertex's entries: sum V tr and sum V.
+    for (unsigned int c = 0; c < n_cells; ++c)
+      for (const auto &vertex_dofs : dofs_of(c))
+        {
+          patch_sums.local_element(vertex_dofs[0]) += cell_rate_sums[c][0];
+          patch_sums.local_element(vertex_dofs[1]) += cell_rate_sums[c][1];
+        }
+    this->add_contributions_of_all_ranks(patch_sums);
+    cell_patch_means.assign(n_cells, 0.);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (cell_rate_sums[c][1] > 0)
+        {
+          double mean = 0;
+          for (const auto &vertex_dofs : dofs_of(c))
+            mean += patch_sums.local_element(vertex_dofs[0]) /
+                    patch_sums.local_element(vertex_dofs[1]);
+          cell_patch_means[c] = mean / n_vertices;
+        }
+  }
+
+
+  template <int dim, class Weights>
   void
   ParticleGridPasses<dim, Weights>::update_stress(const NodalVector &velocity,
                                                   const bool set_affine)
@@ -546,6 +593,7 @@ namespace MPM
     TimerOutput::Scope t(this->get_timer(), "stress update");
     const auto        &updater = this->get_point_update();
     const bool         average = updater.averages_volumetric_strain();
+    const bool patch = updater.averages_volumetric_strain_over_patches();
     // MUSL with APIC, at the points whose C_p update_points_from_grid()
     // did not fit (Weights::fit_is_stable()): it is this velocity gradient
     // (Apic::store_affine()).
@@ -579,6 +627,31 @@ namespace MPM
         chunk_findings.resize(n_chunks);
         if (average)
           chunk_gradients.resize(n_chunks);
+        if (patch)
+          {
+            // The cells' sums first, for the vertices' means.
+            cell_rate_sums.assign(this->active_cells.size(), {{0., 0.}});
+            this->template for_active_cells<0>(
+              {},
+              [&](const unsigned int c,
+                  const unsigned int,
+                  std::array<VertexValues, 0> &) {
+                const ActiveCell  &cell   = this->active_cells[c];
+                const VertexValues v_node = this->read_nodes(cell, velocity);
+                for (unsigned int q = 0; q < cell.n_points; ++q)
+                  {
+                    const unsigned int k = cell.first_entry + q;
+                    const double       V =
+                      this->points[k][PropertyLayout<dim>::volume];
+                    cell_rate_sums[c][0] +=
+                      V * trace(entry_gradient(k, v_node));
+                    cell_rate_sums[c][1] += V;
+                  }
+              });
+            patch_mean_rates([this](const unsigned int c) -> const auto & {
+              return this->active_cells[c].dofs;
+            });
+          }
         this->template for_active_cells<0>(
           {},
           [&](const unsigned int c,
@@ -596,8 +669,13 @@ namespace MPM
                 gradients->resize(cell.n_points);
                 for (unsigned int q = 0; q < cell.n_points; ++q)
                   (*gradients)[q] = entry_gradient(k0 + q, v_node);
-                PointUpdate<dim>::average_volumetric_part(
-                  this->points.data() + k0, gradients->data(), cell.n_points);
+                if (patch)
+                  PointUpdate<dim>::set_volumetric_part(gradients->data(),
+                                                        cell.n_points,
+                                                        cell_patch_means[c]);
+                else
+                  PointUpdate<dim>::average_volumetric_part(
+                    this->points.data() + k0, gradients->data(), cell.n_points);
               }
             for (unsigned int q = 0; q < cell.n_points; ++q)
               {
@@ -636,11 +714,34 @@ namespace MPM
           any_gradient = store_gradient(this->points[p]);
         if (any_gradient)
           second_moments(point_second_moment);
+        const unsigned int n_point_cells =
+          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
+        if (patch)
+          {
+            cell_rate_sums.assign(n_point_cells, {{0., 0.}});
+            for (unsigned int c = 0; c < n_point_cells; ++c)
+              for (unsigned int p = point_cell_begin[c];
+                   p < point_cell_begin[c + 1];
+                   ++p)
+                {
+                  const double V = this->points[p][PropertyLayout<dim>::volume];
+                  cell_rate_sums[c][0] += V * trace(point_gradients[p]);
+                  cell_rate_sums[c][1] += V;
+                }
+            patch_mean_rates([this](const unsigned int c) -> const auto & {
+              return this->get_cell_dofs()[point_cell_first_point[c]
+                                             ->get_surrounding_cell()
+                                             ->active_cell_index()];
+            });
+          }
         // The points in chunks of their own cells (point_cell_begin).
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
           const unsigned int begin = point_cell_begin[c];
           const unsigned int end   = point_cell_begin[c + 1];
-          if (average)
+          if (patch)
+            PointUpdate<dim>::set_volumetric_part(
+              point_gradients.data() + begin, end - begin, cell_patch_means[c]);
+          else if (average)
             PointUpdate<dim>::average_volumetric_part(
               this->points.data() + begin,
               point_gradients.data() + begin,
