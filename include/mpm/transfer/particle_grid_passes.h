@@ -1,6 +1,7 @@
 #ifndef mpm_transfer_particle_grid_passes_h
 #define mpm_transfer_particle_grid_passes_h
 
+#include <mpm/grid/cell_dof_table.h>
 #include <mpm/transfer/particle_grid_weights.h>
 
 #include <array>
@@ -157,19 +158,24 @@ namespace MPM
     std::vector<std::vector<Tensor<2, dim>>> chunk_gradients;
 
     /**
-     * 'Volumetric strain averaging = patch': from cell_rate_sums (per cell
-     * c of this step's loop: sum V_p tr(grad v_p) and sum V_p of its
-     * points), each vertex's volume-weighted mean over the cells around it
-     * (on every rank: the sums go through patch_sums, a nodal vector), and
-     * each cell's mean of its vertices' means in cell_patch_means[c].
-     * @p dofs_of(c) gives cell c's vertex entries (CellDofTable's).
-     * Sums in the order of the cells, so the same on any number of
-     * threads.
+     * 'Volumetric strain averaging = patch', for the @p n_cells cells of
+     * this step's loop: cell c's sums of V_p tr(grad v_p) and V_p over its
+     * points [begin, end) = @p points_of(c) (velocity gradients in
+     * point_gradients) in cell_rate_sums; each vertex's volume-weighted
+     * mean over the cells around it (on every rank: the sums go through
+     * patch_sums, a nodal vector); each cell's mean of its vertices' means
+     * in cell_patch_means[c]. @p dofs_of(c) gives cell c's vertex entries
+     * (CellDofTable's), looked up once. Sums in the order of the cells, so
+     * the same on any number of threads.
      */
-    template <typename DofsOf>
+    template <typename PointsOf, typename DofsOf>
     void
-    patch_mean_rates(const DofsOf &dofs_of);
+    patch_mean_rates(const unsigned int n_cells,
+                     const PointsOf    &points_of,
+                     const DofsOf      &dofs_of);
 
+    using VertexDofs = typename CellDofTable<dim>::VertexDofs;
+    std::vector<const VertexDofs *>    patch_cell_dofs;
     NodalVector                        patch_sums;
     std::vector<std::array<double, 2>> cell_rate_sums;
     std::vector<double>                cell_patch_means;
@@ -274,8 +280,9 @@ namespace MPM
       return grad_v;
     }
 
-    /// Each point's velocity gradient summed over its entries (stress
-    /// update, weights whose entries are not the points).
+    /// Each point's velocity gradient (stress update: summed over its
+    /// entries for weights whose entries are not the points; per entry
+    /// with 'Volumetric strain averaging = patch' for the others).
     std::vector<Tensor<2, dim>> point_gradients;
     /// Per-point sums over the entries: interpolated acceleration and
     /// velocity.

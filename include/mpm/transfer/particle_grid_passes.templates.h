@@ -539,12 +539,30 @@ namespace MPM
 
 
   template <int dim, class Weights>
-  template <typename DofsOf>
+  template <typename PointsOf, typename DofsOf>
   void
-  ParticleGridPasses<dim, Weights>::patch_mean_rates(const DofsOf &dofs_of)
+  ParticleGridPasses<dim, Weights>::patch_mean_rates(const unsigned int n_cells,
+                                                     const PointsOf &points_of,
+                                                     const DofsOf   &dofs_of)
   {
-    const unsigned int n_cells = cell_rate_sums.size();
-    const NodalVector &mass    = this->get_nodal_fields().mass;
+    // Each cell's vertex entries, looked up once.
+    patch_cell_dofs.resize(n_cells);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      patch_cell_dofs[c] = &dofs_of(c);
+    // The cells' sums: components 0 and 1 of a vertex's entries will hold
+    // sum V tr and sum V over the cells around it.
+    cell_rate_sums.assign(n_cells, {{0., 0.}});
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        const auto [begin, end] = points_of(c);
+        for (unsigned int p = begin; p < end; ++p)
+          {
+            const double V = this->points[p][PropertyLayout<dim>::volume];
+            cell_rate_sums[c][0] += V * trace(point_gradients[p]);
+            cell_rate_sums[c][1] += V;
+          }
+      }
+    const NodalVector &mass = this->get_nodal_fields().mass;
     if (patch_sums.get_partitioner() != mass.get_partitioner())
       patch_sums.reinit(mass.get_partitioner());
     // Zero what is read below and what compress() adds to: the entries of
@@ -553,8 +571,8 @@ namespace MPM
     const auto zero = [this](const unsigned int i) {
       patch_sums.local_element(i) = 0;
     };
-    for (unsigned int c = 0; c < n_cells; ++c)
-      for (const auto &vertex_dofs : dofs_of(c))
+    for (const VertexDofs *dofs : patch_cell_dofs)
+      for (const auto &vertex_dofs : *dofs)
         for (unsigned int k = 0; k < 2; ++k)
           {
             zero(vertex_dofs[k]);
@@ -564,9 +582,8 @@ namespace MPM
       for (unsigned int i = range.first; i < range.second; ++i)
         zero(i);
     patch_sums.zero_out_ghost_values();
-    // Components 0 and 1 of a vertex's entries: sum V tr and sum V.
     for (unsigned int c = 0; c < n_cells; ++c)
-      for (const auto &vertex_dofs : dofs_of(c))
+      for (const auto &vertex_dofs : *patch_cell_dofs[c])
         {
           patch_sums.local_element(vertex_dofs[0]) += cell_rate_sums[c][0];
           patch_sums.local_element(vertex_dofs[1]) += cell_rate_sums[c][1];
@@ -577,7 +594,7 @@ namespace MPM
       if (cell_rate_sums[c][1] > 0)
         {
           double mean = 0;
-          for (const auto &vertex_dofs : dofs_of(c))
+          for (const auto &vertex_dofs : *patch_cell_dofs[c])
             mean += patch_sums.local_element(vertex_dofs[0]) /
                     patch_sums.local_element(vertex_dofs[1]);
           cell_patch_means[c] = mean / n_vertices;
@@ -629,8 +646,9 @@ namespace MPM
           chunk_gradients.resize(n_chunks);
         if (patch)
           {
-            // The cells' sums first, for the vertices' means.
-            cell_rate_sums.assign(this->active_cells.size(), {{0., 0.}});
+            // The points' velocity gradients first (kept for the stress
+            // below), and from them the cells' and vertices' means.
+            point_gradients.resize(this->points.size());
             this->template for_active_cells<0>(
               {},
               [&](const unsigned int c,
@@ -638,19 +656,20 @@ namespace MPM
                   std::array<VertexValues, 0> &) {
                 const ActiveCell  &cell   = this->active_cells[c];
                 const VertexValues v_node = this->read_nodes(cell, velocity);
-                for (unsigned int q = 0; q < cell.n_points; ++q)
-                  {
-                    const unsigned int k = cell.first_entry + q;
-                    const double       V =
-                      this->points[k][PropertyLayout<dim>::volume];
-                    cell_rate_sums[c][0] +=
-                      V * trace(entry_gradient(k, v_node));
-                    cell_rate_sums[c][1] += V;
-                  }
+                const unsigned int end    = cell.first_entry + cell.n_points;
+                for (unsigned int k = cell.first_entry; k < end; ++k)
+                  point_gradients[k] = entry_gradient(k, v_node);
               });
-            patch_mean_rates([this](const unsigned int c) -> const auto & {
-              return this->active_cells[c].dofs;
-            });
+            patch_mean_rates(
+              this->active_cells.size(),
+              [this](const unsigned int c) {
+                const ActiveCell &cell = this->active_cells[c];
+                return std::make_pair(cell.first_entry,
+                                      cell.first_entry + cell.n_points);
+              },
+              [this](const unsigned int c) -> const auto & {
+                return this->active_cells[c].dofs;
+              });
           }
         this->template for_active_cells<0>(
           {},
@@ -662,34 +681,38 @@ namespace MPM
             const VertexValues v_node = this->read_nodes(cell, velocity);
             // With 'Volumetric strain averaging = cell', the cell's
             // velocity gradients first, to average their traces.
-            std::vector<Tensor<2, dim>> *gradients =
-              average ? &chunk_gradients[chunk] : nullptr;
-            if (average)
+            // With 'patch', the gradients computed above.
+            Tensor<2, dim> *gradients = nullptr;
+            if (patch)
               {
-                gradients->resize(cell.n_points);
+                gradients = point_gradients.data() + k0;
+                PointUpdate<dim>::set_volumetric_part(gradients,
+                                                      cell.n_points,
+                                                      cell_patch_means[c]);
+              }
+            else if (average)
+              {
+                std::vector<Tensor<2, dim>> &cell_gradients =
+                  chunk_gradients[chunk];
+                cell_gradients.resize(cell.n_points);
                 for (unsigned int q = 0; q < cell.n_points; ++q)
-                  (*gradients)[q] = entry_gradient(k0 + q, v_node);
-                if (patch)
-                  PointUpdate<dim>::set_volumetric_part(gradients->data(),
-                                                        cell.n_points,
-                                                        cell_patch_means[c]);
-                else
-                  PointUpdate<dim>::average_volumetric_part(
-                    this->points.data() + k0, gradients->data(), cell.n_points);
+                  cell_gradients[q] = entry_gradient(k0 + q, v_node);
+                gradients = cell_gradients.data();
+                PointUpdate<dim>::average_volumetric_part(
+                  this->points.data() + k0, gradients, cell.n_points);
               }
             for (unsigned int q = 0; q < cell.n_points; ++q)
               {
                 const unsigned int k = k0 + q;
-                update_point(k,
-                             average ? (*gradients)[q] :
-                                       entry_gradient(k, v_node),
-                             store_gradient(this->points[k]) ?
-                               Apic<dim>::second_moment(
-                                 this->shape_functions[k].value,
-                                 weights().node_offsets(cell, k)) :
-                               Tensor<2, dim>(),
-                             cell.size,
-                             chunk_findings[chunk]);
+                update_point(
+                  k,
+                  gradients ? gradients[q] : entry_gradient(k, v_node),
+                  store_gradient(this->points[k]) ?
+                    Apic<dim>::second_moment(this->shape_functions[k].value,
+                                             weights().node_offsets(cell, k)) :
+                    Tensor<2, dim>(),
+                  cell.size,
+                  chunk_findings[chunk]);
               }
           });
       }
@@ -717,23 +740,17 @@ namespace MPM
         const unsigned int n_point_cells =
           point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
         if (patch)
-          {
-            cell_rate_sums.assign(n_point_cells, {{0., 0.}});
-            for (unsigned int c = 0; c < n_point_cells; ++c)
-              for (unsigned int p = point_cell_begin[c];
-                   p < point_cell_begin[c + 1];
-                   ++p)
-                {
-                  const double V = this->points[p][PropertyLayout<dim>::volume];
-                  cell_rate_sums[c][0] += V * trace(point_gradients[p]);
-                  cell_rate_sums[c][1] += V;
-                }
-            patch_mean_rates([this](const unsigned int c) -> const auto & {
+          patch_mean_rates(
+            n_point_cells,
+            [this](const unsigned int c) {
+              return std::make_pair(point_cell_begin[c],
+                                    point_cell_begin[c + 1]);
+            },
+            [this](const unsigned int c) -> const auto & {
               return this->get_cell_dofs()[point_cell_first_point[c]
                                              ->get_surrounding_cell()
                                              ->active_cell_index()];
             });
-          }
         // The points in chunks of their own cells (point_cell_begin).
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
           const unsigned int begin = point_cell_begin[c];
