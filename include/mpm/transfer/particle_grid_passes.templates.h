@@ -730,13 +730,13 @@ namespace MPM
               point_gradients[weights().point_of_entry(k)] +=
                 entry_gradient(k, v_node);
           }
-        // The second moments, if a point takes the gradient as C_p.
-        bool any_gradient = false;
-        for (unsigned int p = 0; set_affine && p < n_points && !any_gradient;
-             ++p)
-          any_gradient = store_gradient(this->points[p]);
-        if (any_gradient)
-          second_moments(point_second_moment);
+        // A point that takes the gradient as C_p needs its second moment:
+        // map_mass_and_momentum() of this step summed them over the same
+        // entries into point_second_moment (APIC on these weights always
+        // does; the entries do not change within a step).
+        Assert(!set_affine || (this->get_transfer().apic() != nullptr &&
+                               point_second_moment.size() == n_points),
+               ExcInternalError());
         const unsigned int n_point_cells =
           point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
         if (patch)
