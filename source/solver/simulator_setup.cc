@@ -90,7 +90,8 @@ namespace MPM
                "'Sliding on Coulomb friction: a flutter').\n";
     // Local damping (the quasi-static strength-reduction files) drains
     // what the pairing feeds in until a layer runs far past failure.
-    if (time_stepping.average_volumetric_strain &&
+    if (time_stepping.volumetric_strain_averaging !=
+          TimeSteppingParameters<dim>::VolumetricStrainAveraging::none &&
         transfer.scheme().flip_fraction(1e-6) > 0 &&
         time_stepping.local_damping == 0 &&
         !time_stepping.local_damping_function)

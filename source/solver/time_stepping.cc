@@ -123,12 +123,12 @@ namespace MPM
         }
       local_damping_expression = damping;
       check_local_damping(local_damping, 0);
-      const std::string averaging = prm.get("Volumetric strain averaging");
-      average_volumetric_strain =
-        select_choice<bool>(averaging,
-                            {{"none", false}, {"cell", true}, {"patch", true}},
-                            "Time stepping/Volumetric strain averaging");
-      average_volumetric_strain_over_patches = (averaging == "patch");
+      volumetric_strain_averaging = select_choice<VolumetricStrainAveraging>(
+        prm.get("Volumetric strain averaging"),
+        {{"none", VolumetricStrainAveraging::none},
+         {"cell", VolumetricStrainAveraging::cell},
+         {"patch", VolumetricStrainAveraging::patch}},
+        "Time stepping/Volumetric strain averaging");
       const auto g  = Utilities::string_to_double(
         Utilities::split_string_list(prm.get("Gravity")));
       for (unsigned int d = 0; d < dim; ++d)

@@ -126,13 +126,14 @@ namespace MPM
     }
 
     /// Whether the points of a cell share their volumetric strain rate
-    /// ('Time stepping/Volumetric strain averaging = cell'): then the
-    /// weights call average_volumetric_part() on each cell's gradients
+    /// ('Time stepping/Volumetric strain averaging = cell' or 'patch'): then
+    /// the weights call average_volumetric_part() on each cell's gradients
     /// before update_stress().
     bool
     averages_volumetric_strain() const
     {
-      return time_stepping.average_volumetric_strain;
+      return time_stepping.volumetric_strain_averaging !=
+             TimeSteppingParameters<dim>::VolumetricStrainAveraging::none;
     }
 
     /// Whether the cells' means are averaged again over the cells around
@@ -140,7 +141,8 @@ namespace MPM
     bool
     averages_volumetric_strain_over_patches() const
     {
-      return time_stepping.average_volumetric_strain_over_patches;
+      return time_stepping.volumetric_strain_averaging ==
+             TimeSteppingParameters<dim>::VolumetricStrainAveraging::patch;
     }
 
     /**

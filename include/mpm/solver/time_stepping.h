@@ -72,12 +72,19 @@ namespace MPM
 
     void
     check_local_damping(const double alpha, const double time) const;
-    /// Replace each point's volumetric strain rate by the volume-weighted
-    /// mean over the points of its cell (anti-locking): 'cell' or 'patch'.
-    bool average_volumetric_strain = true;
-    /// 'patch': the cells' means averaged again over the cells around each
-    /// of their vertices (ParticleGridPasses::patch_mean_rates()).
-    bool average_volumetric_strain_over_patches = false;
+    /// 'Volumetric strain averaging': none; each point's volumetric strain
+    /// rate replaced by the volume-weighted mean over the points of its
+    /// cell (anti-locking); or the cells' means averaged again over the
+    /// cells around each of their vertices
+    /// (ParticleGridPasses::patch_mean_rates()).
+    enum class VolumetricStrainAveraging
+    {
+      none,
+      cell,
+      patch
+    };
+    VolumetricStrainAveraging volumetric_strain_averaging =
+      VolumetricStrainAveraging::cell;
     /// 'Gravity' as given, in the scene's frame (as the regions are).
     Tensor<1, dim> scene_gravity;
     /// Gravity in the mesh's frame, which the step works in
