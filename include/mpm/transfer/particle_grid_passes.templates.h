@@ -901,8 +901,10 @@ namespace MPM
     constexpr unsigned int n_sources  = Kernel::max_sources;
     const typename Kernel::Sources sources = kernel.grid_sources();
     // The kernel's affine fit of its first source: APIC's B D^-1 where the
-    // weights' second moment is bounded below (CPDI), else (linear
-    // weights, whose D vanishes on cell edges) the gradient.
+    // weights' second moment is bounded below (CPDI) and the point's fit is
+    // stable there (Weights::fit_is_stable(): not a domain scaled down to
+    // nearly the linear weights), else (linear weights, whose D vanishes
+    // on cell edges) the gradient, as the skeleton's APIC under MUSL.
     const bool affine = kernel.needs_affine() && sources[0] != nullptr;
     const bool fit_by_moments =
       affine && weights().second_moment_bounded_below();
@@ -927,11 +929,12 @@ namespace MPM
               add_to_affine_fit(cell, k, u, *fit);
           }
     };
-    const auto affine_fit = [&](const AffineFitSums  &fit,
+    const auto affine_fit = [&](const double         *props,
+                                const AffineFitSums  &fit,
                                 const Tensor<2, dim> &gradient) {
       if (!affine)
         return Tensor<2, dim>();
-      if (!fit_by_moments)
+      if (!fit_by_moments || !weights().fit_is_stable(props))
         return gradient;
       return Apic<dim>::affine_fit(fit.B, fit.D, fit.gradient, fit.node_scale);
     };
@@ -965,7 +968,8 @@ namespace MPM
                                   sums.values.data(),
                                   sums.gradients.data(),
                                   fit_by_moments ? &fit : nullptr);
-                        sums.affine = affine_fit(fit, sums.gradients[0]);
+                        sums.affine =
+                          affine_fit(this->points[k], fit, sums.gradients[0]);
                       }
                     update_phase_points_of_cell(kernel,
                                                 cell.first_entry,
@@ -986,7 +990,9 @@ namespace MPM
                     kernel.update_point(this->points[k],
                                         values,
                                         gradients,
-                                        affine_fit(fit, gradients[0]));
+                                        affine_fit(this->points[k],
+                                                   fit,
+                                                   gradients[0]));
                   }
               }
           });
@@ -1017,7 +1023,8 @@ namespace MPM
               }
           }
         const auto affine_of_point = [&](const unsigned int p) {
-          return affine_fit(fit_by_moments ? phase_affine_sums[p] :
+          return affine_fit(this->points[p],
+                            fit_by_moments ? phase_affine_sums[p] :
                                              AffineFitSums(),
                             phase_gradients[std::size_t(p) * n_sources]);
         };
