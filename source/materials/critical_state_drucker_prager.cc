@@ -44,10 +44,25 @@ namespace MPM
      * K_b eta eta_bar stays above G / 2 (a strongly contracting, weak
      * packing).
      *
+     * 'Fluid viscosity' eta_f > 0 adds the viscous shear stress of a dense
+     * suspension (Boyer, Guazzelli and Pouliquen 2011) at the packing's
+     * volume fraction, 2 eta_f eta_r(phi) D' with D' the deviatoric
+     * strain rate and, at the viscous number J = (phi_c / phi - 1)^2 of
+     * their phi(J) = phi_c / (1 + J^1/2) (phi_c in place of their phi_m),
+     * eta_r = mu(J) / J with mu(J) = tan(phi_c') + J + 5/2 phi_c J^1/2
+     * (their mu_2 term left out), at most 'Maximum viscosity ratio'
+     * (which it also is for phi >= phi_c). Why: at the apex, a liquefied
+     * packing carries no effective stress, and without it a liquefied
+     * submerged column runs as an inviscid liquid, at the speed of its
+     * buoyant weight (doc/pore_water.md, "A submerged collapse"). The
+     * viscous part is not accumulated: it is kept in six state variables
+     * and replaced every step. Its energy is not in the strain energy.
+     *
      * What it leaves out: the rate dependence of the critical volume
      * fraction (phi_c falls with the inertial or viscous number in
-     * Pailha and Pouliquen's model), elasticity that depends on pressure,
-     * and any cohesion.
+     * Pailha and Pouliquen's model) and the shear-induced particle
+     * pressure of a suspension (Boyer et al.'s p' = eta_f gamma_dot / J),
+     * elasticity that depends on pressure, and any cohesion.
      */
     class CriticalStateDruckerPrager : public MaterialModel
     {
@@ -80,6 +95,25 @@ namespace MPM
                           "distance from the critical packing sets the "
                           "dilatancy (and the friction mu = tan phi_c' + "
                           "tan psi).");
+        prm.declare_entry(
+          "Fluid viscosity",
+          "0",
+          Patterns::Double(0),
+          "eta_f in Pa s, >= 0: the viscosity of the liquid between the "
+          "grains. Above 0 the skeleton carries a dense suspension's viscous "
+          "shear stress 2 eta_f eta_r(phi) D' (Boyer, Guazzelli and "
+          "Pouliquen 2011: eta_r = mu(J) / J at J = (phi_c / phi - 1)^2, "
+          "mu(J) = tan phi_c' + J + 5/2 phi_c J^1/2), which a liquefied "
+          "packing (no effective stress) keeps; 0: rate-independent.");
+        prm.declare_entry(
+          "Maximum viscosity ratio",
+          "1000",
+          Patterns::Double(1),
+          "The largest eta_r (the suspension's viscosity over the "
+          "liquid's, which diverges as phi approaches phi_c; also taken for "
+          "phi >= phi_c, where the contacts' friction carries the shear). "
+          "It sets the time step's viscous bound dt <= rho h^2 / (2 d "
+          "eta_f eta_r).");
       }
 
       void
@@ -104,6 +138,10 @@ namespace MPM
                       prm.get_double("Critical friction angle") < 90,
                     where("Critical friction angle") +
                       ": must lie in (0, 90) degrees.");
+        fluid_viscosity = prm.get_double("Fluid viscosity");
+        maximum_ratio   = prm.get_double("Maximum viscosity ratio");
+        check_input(maximum_ratio >= 1,
+                    where("Maximum viscosity ratio") + ": must be >= 1.");
         bulk_modulus = elasticity.lambda + 2. / 3. * elasticity.shear_modulus;
       }
 
@@ -111,9 +149,65 @@ namespace MPM
       update_stress(const SymmetricTensor<2, 3> &strain_increment,
                     SymmetricTensor<2, 3>       &stress,
                     const ArrayView<double>     &state,
-                    const double) const override
+                    const double                 time_step) const override
       {
-        AssertIndexRange(1, state.size());
+        AssertIndexRange(n_state_variables() - 1, state.size());
+        if (fluid_viscosity > 0)
+          stress -= viscous_stress(state);
+        update_contact_stress(strain_increment, stress, state);
+        if (fluid_viscosity > 0 && time_step > 0)
+          {
+            const SymmetricTensor<2, 3> viscous =
+              (2 * fluid_viscosity * viscosity_ratio(state[1]) / time_step) *
+              deviator(strain_increment);
+            for (unsigned int c = 0; c < 6; ++c)
+              state[2 + c] =
+                viscous[SymmetricTensor<2, 3>::unrolled_to_component_indices(
+                  c)];
+            stress += viscous;
+          }
+      }
+
+      double
+      maximum_viscosity() const override
+      {
+        return fluid_viscosity * maximum_ratio;
+      }
+
+      /**
+       * eta_r(phi) = mu(J) / J at J = (phi_c / phi - 1)^2, at most the
+       * 'Maximum viscosity ratio'.
+       */
+      double
+      viscosity_ratio(const double phi) const
+      {
+        if (!(phi < critical_fraction))
+          return maximum_ratio;
+        const double sqrt_J = critical_fraction / phi - 1;
+        const double J      = sqrt_J * sqrt_J;
+        const double mu =
+          critical_friction + J + 2.5 * critical_fraction * sqrt_J;
+        return mu < maximum_ratio * J ? mu / J : maximum_ratio;
+      }
+
+    private:
+      /// The viscous part of the stress, kept in state variables 2-7.
+      static SymmetricTensor<2, 3>
+      viscous_stress(const ArrayView<double> &state)
+      {
+        SymmetricTensor<2, 3> viscous;
+        for (unsigned int c = 0; c < 6; ++c)
+          viscous[SymmetricTensor<2, 3>::unrolled_to_component_indices(c)] =
+            state[2 + c];
+        return viscous;
+      }
+
+      /// The elastic-plastic stress of the contacts (rate-independent).
+      void
+      update_contact_stress(const SymmetricTensor<2, 3> &strain_increment,
+                            SymmetricTensor<2, 3>       &stress,
+                            const ArrayView<double>     &state) const
+      {
         const double G = elasticity.shear_modulus;
         // The cone of the packing at the start of the step: the
         // plane-strain fit for the friction mu and the dilatancy tan psi,
@@ -140,6 +234,7 @@ namespace MPM
           state[0] += root_decrease / (std::sqrt(3.) * G);
       }
 
+    public:
       double
       strain_energy_density(const SymmetricTensor<2, 3> &stress) const override
       {
@@ -166,21 +261,29 @@ namespace MPM
       unsigned int
       n_state_variables() const override
       {
-        return 2;
+        return fluid_viscosity > 0 ? 8 : 2;
       }
 
       std::vector<std::string>
       state_variable_names() const override
       {
-        return {"plastic_shear_strain", "volume_fraction"};
+        std::vector<std::string> names{"plastic_shear_strain",
+                                       "volume_fraction"};
+        if (fluid_viscosity > 0)
+          for (const std::string component :
+               {"xx", "yy", "zz", "xy", "xz", "yz"})
+            names.push_back("viscous_stress_" + component);
+        return names;
       }
 
       void
       initialize_state(const ArrayView<double> &state) const override
       {
-        AssertIndexRange(1, state.size());
+        AssertIndexRange(n_state_variables() - 1, state.size());
         state[0] = 0;
         state[1] = initial_fraction;
+        for (unsigned int c = 2; c < n_state_variables(); ++c)
+          state[c] = 0;
       }
 
     private:
@@ -190,6 +293,8 @@ namespace MPM
       double              critical_fraction = 0.58;
       double              initial_fraction  = 0.58;
       double              dilatancy         = 4;
+      double              fluid_viscosity   = 0;
+      double              maximum_ratio     = 1000;
     };
   } // namespace MaterialModels
 } // namespace MPM

@@ -254,6 +254,16 @@ namespace MPM
   }
 
 
+  double
+  MaterialLibrary::max_kinematic_viscosity() const
+  {
+    double nu = 0;
+    for (const auto &m : materials)
+      nu = std::max(nu, m.model->maximum_viscosity() / m.density);
+    return nu;
+  }
+
+
   bool
   MaterialLibrary::has_state_dependent_stiffness() const
   {

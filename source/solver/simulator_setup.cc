@@ -131,6 +131,14 @@ namespace MPM
                         max_state_wave_speed) :
                materials.max_wave_speed();
     });
+    // A viscous stress (MaterialModel::maximum_viscosity()): the explicit
+    // diffusion bound dt <= h^2 / (2 d nu), as the speed 2 d nu / h of the
+    // CFL condition (at CFL <= 1 the step stays below the bound).
+    if (materials.max_kinematic_viscosity() > 0)
+      time_step_bounds.add([this]() {
+        return 2. * dim * materials.max_kinematic_viscosity() /
+               active_cell_size;
+      });
     // The pore water's: the two phases' fast P wave
     // (PoreWater::fastest_wave_speed()).
     if (pore_water.active())

@@ -139,6 +139,14 @@ namespace MPM
     has_state_dependent_stiffness() const;
 
     /**
+     * The largest kinematic viscosity eta / rho (m^2/s) of the materials'
+     * models (MaterialModel::maximum_viscosity()): the explicit step's
+     * viscous bound dt <= h^2 / (2 d nu). 0 if no model has one.
+     */
+    double
+    max_kinematic_viscosity() const;
+
+    /**
      * Whether a material bounds its points' volume ('Minimum density'
      * above 0): then the run's summary counts the stress updates that
      * kept a volume at the bound.

@@ -117,6 +117,21 @@ namespace MPM
     }
 
     /**
+     * The largest dynamic viscosity (Pa s) the model's stress can carry: a
+     * viscous stress 2 eta D computed from the step's strain rate is
+     * stable only for steps below about rho h^2 / (2 d eta) (explicit
+     * diffusion), which the time step then respects
+     * (MaterialLibrary::max_kinematic_viscosity()). 0, the default: no
+     * viscous stress that bounds the step (a Newtonian liquid's is far
+     * below its sound speed's bound and is left out).
+     */
+    virtual double
+    maximum_viscosity() const
+    {
+      return 0;
+    }
+
+    /**
      * Coefficient of earth pressure at rest used by the geostatic initial
      * stress when the user does not give one; for an elastic solid in
      * uniaxial strain nu / (1 - nu).
