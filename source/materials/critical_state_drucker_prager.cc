@@ -117,8 +117,8 @@ namespace MPM
           "2011: eta_f gamma_dot / J below the cap), as an isotropic "
           "compression of the skeleton. It gives a liquefied layer "
           "friction and draws water in as it shears: with it the loose "
-          "submerged collapse converges (95 % of the volume within 2.15 / "
-          "2.13 L0 on 5 / 2.5 mm), without it the runout grows by a third per "
+          "submerged collapse converges (95 % of the volume within 2.19 L0 "
+          "on 5 and 2.5 mm), without it the runout grows by a third per "
           "halving of the cells (doc/pore_water.md, 'A submerged "
           "collapse').");
         prm.declare_entry(
