@@ -200,13 +200,11 @@ namespace MPM
                              NodalFields           &nodal)
   {
     material_porosity.clear();
-    material_dry_density.clear();
     material_permeability.clear();
     is_active = false;
     for (unsigned int m = 0; m < materials.size(); ++m)
       {
         material_porosity.push_back(materials[m].porosity);
-        material_dry_density.push_back(materials[m].density);
         material_permeability.push_back(materials[m].permeability);
         is_active = is_active || materials[m].porosity > 0;
       }
@@ -588,6 +586,7 @@ namespace MPM
             (1 - flip_fraction) * values[0];
     for (unsigned int d = 0; d < dim; ++d)
       props[velocity_slot() + d] = v_w[d];
+    const double div_s = trace(gradients[2]);
     if (rate_averaging == RateAveraging::node)
       // The pressure follows in NodalPressureRate's pass.
       props[volumetric_rate_slot()] = cell_rate(props, values, gradients).first;
@@ -596,23 +595,10 @@ namespace MPM
                                 (rate_averaging == RateAveraging::cell ?
                                    cell_mean :
                                    cell_rate(props, values, gradients).first);
-    // The pores change with the skeleton's volume: the grains keep
-    // theirs, (1 - n) V = (1 - n0) V0 with V0 = m / rho_d, so the porosity
-    // is computed from the point's volume, not summed from its own
-    // divergence (which under 'Volumetric strain averaging' is not the
-    // rate the volume follows: at a creeping column's toe that sum drifted
-    // to n = 0.004 in 7 s while the volume grew by 4 %, and the water's
-    // stiffness K_w / n then broke the step). Bounded away from 0 and 1,
-    // where the formulation has no meaning.
-    const unsigned int material =
-      static_cast<unsigned int>(props[PropertyLayout<dim>::material_id]);
-    const double grains = (1 - material_porosity[material]) *
-                          props[PropertyLayout<dim>::mass] /
-                          material_dry_density[material];
+    // The pores change with the skeleton's volume; bounded away from 0
+    // and 1, where the formulation has no meaning.
     props[porosity_slot()] =
-      std::clamp(1 - grains / props[PropertyLayout<dim>::volume],
-                 1e-3,
-                 1 - 1e-3);
+      std::clamp(n + dt * (1 - n) * div_s, 1e-3, 1 - 1e-3);
   }
 
 

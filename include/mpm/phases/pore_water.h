@@ -383,8 +383,8 @@ namespace MPM
     /**
      * The water the point with properties @p props held at the start,
      * rho_w n0 V0 (0 for a dry point), from its grains' volume (1 - n) V,
-     * which the porosity keeps (it is computed from the point's volume:
-     * n = 1 - (1 - n0) V0 / V). The point's water, water_mass(), changes with
+     * which the porosity's update keeps (dn/dt = (1 - n) div v_s against
+     * dV/dt = V div v_s). The point's water, water_mass(), changes with
      * its pores: water drawn in through a drained face as the skeleton
      * dilates, pushed out as it compacts. The energies weigh this water
      * instead: the weight of water that appears at a point had no
@@ -459,9 +459,6 @@ namespace MPM
     /// Per material: its porosity at the start (0: dry) and its
     /// intrinsic permeability.
     std::vector<double> material_porosity;
-    /// Each material's 'Density' (the dry density (1 - n0) rho_s of a
-    /// saturated one): a point's grains fill (1 - n0) m / rho_d.
-    std::vector<double> material_dry_density;
     std::vector<double> material_permeability;
 
     unsigned int first_slot = 0;
