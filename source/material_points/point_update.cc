@@ -1,6 +1,7 @@
 #include <mpm/material_points/point_update.h>
 #include <mpm/material_points/property_layout.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -127,10 +128,29 @@ namespace MPM
             const double factor = largest / volume;
             volume              = largest;
             ++findings.n_volume_bounded;
+            update_porosity(props, material);
             return factor;
           }
       }
+    update_porosity(props, material);
     return 1.;
+  }
+
+
+  template <int dim>
+  void
+  PointUpdate<dim>::update_porosity(double         *props,
+                                    const Material &material) const
+  {
+    if (porosity_slot == numbers::invalid_unsigned_int ||
+        material.porosity == 0)
+      return;
+    using Layout = PropertyLayout<dim>;
+    const double grains =
+      (1 - material.porosity) * props[Layout::mass] / material.density;
+    // Bounded away from 0 and 1, where the formulation has no meaning.
+    props[porosity_slot] =
+      std::clamp(1 - grains / props[Layout::volume], 1e-3, 1 - 1e-3);
   }
 
 

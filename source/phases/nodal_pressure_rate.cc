@@ -63,9 +63,9 @@ namespace MPM
     const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &,
     const Tensor<2, dim> &) const
   {
-    // The porosity is the end of the step's (PoreWater's pass has
-    // updated it): it differs from the start's by dt (1 - n) div v_s,
-    // within the explicit step's own error.
+    // The porosity of the step's start, as PoreWater's own update uses
+    // (the skeleton's stress update, later in the step, moves it with the
+    // volume).
     const double n = props[slots.porosity];
     if (n == 0)
       return;

@@ -200,11 +200,13 @@ namespace MPM
                              NodalFields           &nodal)
   {
     material_porosity.clear();
+    material_dry_density.clear();
     material_permeability.clear();
     is_active = false;
     for (unsigned int m = 0; m < materials.size(); ++m)
       {
         material_porosity.push_back(materials[m].porosity);
+        material_dry_density.push_back(materials[m].density);
         material_permeability.push_back(materials[m].permeability);
         is_active = is_active || materials[m].porosity > 0;
       }
@@ -586,7 +588,6 @@ namespace MPM
             (1 - flip_fraction) * values[0];
     for (unsigned int d = 0; d < dim; ++d)
       props[velocity_slot() + d] = v_w[d];
-    const double div_s = trace(gradients[2]);
     if (rate_averaging == RateAveraging::node)
       // The pressure follows in NodalPressureRate's pass.
       props[volumetric_rate_slot()] = cell_rate(props, values, gradients).first;
@@ -595,10 +596,8 @@ namespace MPM
                                 (rate_averaging == RateAveraging::cell ?
                                    cell_mean :
                                    cell_rate(props, values, gradients).first);
-    // The pores change with the skeleton's volume; bounded away from 0
-    // and 1, where the formulation has no meaning.
-    props[porosity_slot()] =
-      std::clamp(n + dt * (1 - n) * div_s, 1e-3, 1 - 1e-3);
+    // The porosity follows the volume where the volume changes
+    // (PointUpdate::update_porosity()).
   }
 
 

@@ -169,8 +169,12 @@ namespace MPM
                            weights->point_property_names());
     weights->set_property_slots(transfer_slot, weights_slot);
     if (pore_water.active())
-      pore_water.set_first_slot(
-        point_properties.add("pore water", pore_water.point_property_names()));
+      {
+        pore_water.set_first_slot(
+          point_properties.add("pore water",
+                               pore_water.point_property_names()));
+        point_update.set_porosity_slot(pore_water.porosity_slot());
+      }
     particle_handler.initialize(grid.triangulation,
                                 grid.mapping,
                                 point_properties.n_slots());

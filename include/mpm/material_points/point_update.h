@@ -48,6 +48,21 @@ namespace MPM
     }
 
     /**
+     * The slot of the pore water's porosity (PoreWater::porosity_slot()),
+     * set when the scene has pore water: a saturated point's porosity then
+     * follows its volume where update_stress() changes it. Its grains keep
+     * their volume, (1 - n) V = (1 - n0) V0 with V0 = m / rho_d, so
+     * n = 1 - (1 - n0) m / (rho_d V): the porosity, the volume and the
+     * water the pores hold stay one state, whatever rate the volume took
+     * ('Volumetric strain averaging', 'Minimum density').
+     */
+    void
+    set_porosity_slot(const unsigned int slot)
+    {
+      porosity_slot = slot;
+    }
+
+    /**
      * What the updates of a range of points found: kept per chunk of points
      * by the threaded passes (for_each_chunk()), so that the points update
      * concurrently, and handed to record() in chunk order.
@@ -190,6 +205,13 @@ namespace MPM
     /// The square of take_max_state_wave_speed().
     double                       max_state_wave_speed2 = 0;
     std::uint64_t                n_volume_bounded_updates = 0;
+    /// set_porosity_slot(); invalid: no pore water.
+    unsigned int porosity_slot = numbers::invalid_unsigned_int;
+
+    /// The porosity of a saturated point from its volume
+    /// (set_porosity_slot()); nothing for a dry one.
+    void
+    update_porosity(double *props, const Material &material) const;
   };
 } // namespace MPM
 

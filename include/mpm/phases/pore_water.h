@@ -47,9 +47,10 @@ namespace MPM
    *    walls' normal constraints (impermeable walls);
    *  - grid to particle (update_points()): v_w by the FLIP/PIC share of
    *    the transfer scheme (PIC under APIC), then p from the water's
-   *    balance dp = -(K_w / n) ((1 - n) div v_s + n div v_w) dt and
-   *    n from the skeleton's volume change dn = (1 - n) div v_s dt, with
-   *    the end-of-step nodal velocities.
+   *    balance dp = -(K_w / n) ((1 - n) div v_s + n div v_w) dt, with
+   *    the end-of-step nodal velocities; n follows the point's volume in
+   *    the skeleton's stress update, its grains keeping their volume
+   *    (PointUpdate::update_porosity()).
    *
    * A boundary without a wall drains, and so does a free surface inside
    * the mesh: the weak form has no pressure term there, which is p = 0; a
@@ -382,12 +383,12 @@ namespace MPM
 
     /**
      * The water the point with properties @p props held at the start,
-     * rho_w n0 V0 (0 for a dry point), from its grains' volume (1 - n) V,
-     * which the porosity's update keeps (dn/dt = (1 - n) div v_s against
-     * dV/dt = V div v_s). The point's water, water_mass(), changes with
-     * its pores: water drawn in through a drained face as the skeleton
-     * dilates, pushed out as it compacts. The energies weigh this water
-     * instead: the weight of water that appears at a point had no
+     * rho_w n0 V0 = rho_w n0 m / rho_d (0 for a dry point): its grains
+     * keep their volume, (1 - n) V = (1 - n0) V0
+     * (PointUpdate::update_porosity()). The point's water, water_mass(),
+     * changes with its pores: water drawn in through a drained face as the
+     * skeleton dilates, pushed out as it compacts. The energies weigh this
+     * water instead: the weight of water that appears at a point had no
      * potential energy to release, and weighing it would add m g y with
      * y from the coordinates' arbitrary origin (weighed so, a permeable
      * flume "creates" the potential energy of the water its dilating
@@ -397,13 +398,12 @@ namespace MPM
     double
     carried_water_mass(const double *props) const
     {
-      const double n = props[porosity_slot()];
-      if (n == 0)
+      if (props[porosity_slot()] == 0)
         return 0.;
-      const double n0 = material_porosity[static_cast<unsigned int>(
-        props[PropertyLayout<dim>::material_id])];
-      return water_density * n0 * (1 - n) / (1 - n0) *
-             props[PropertyLayout<dim>::volume];
+      const unsigned int material =
+        static_cast<unsigned int>(props[PropertyLayout<dim>::material_id]);
+      return water_density * material_porosity[material] *
+             props[PropertyLayout<dim>::mass] / material_dry_density[material];
     }
 
     double
@@ -459,6 +459,9 @@ namespace MPM
     /// Per material: its porosity at the start (0: dry) and its
     /// intrinsic permeability.
     std::vector<double> material_porosity;
+    /// Each material's 'Density' (the dry density (1 - n0) rho_s of a
+    /// saturated one): a point's grains fill (1 - n0) m / rho_d.
+    std::vector<double> material_dry_density;
     std::vector<double> material_permeability;
 
     unsigned int first_slot = 0;
