@@ -277,10 +277,19 @@ def covering_parameter_files(all_prm, directory):
 
 
 def run(command, timeout=120):
+    """Run a command from the project's root. Each call gets a session
+    directory base of its own for Open MPI's singleton: two mpm processes
+    started at once under one base raced (one removed ompi.HOST.0/jf.0 at
+    its end while the other created jf.0/1 in it, and the second stopped in
+    MPI_Init with 'A call to mkdir was unable to create the desired
+    directory')."""
     started = time.time()
-    result = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, universal_newlines=True,
-                            timeout=timeout)
+    with tempfile.TemporaryDirectory(
+            dir=os.environ.get("OMPI_MCA_orte_tmpdir_base")) as session:
+        environment = dict(os.environ, OMPI_MCA_orte_tmpdir_base=session)
+        result = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, universal_newlines=True,
+                                timeout=timeout, env=environment)
     return result.returncode, result.stdout, result.stderr, time.time() - started
 
 

@@ -66,9 +66,16 @@ OUTPUT = os.path.join(ROOT, "doc", "parameters.md")
 
 
 def run(command):
+    """Run a command from the project's root, with a session directory base
+    of its own for Open MPI's singleton (calls run two at a time; under one
+    base, one singleton's clean-up can remove the directory the other is
+    creating, scripts/check_docs.py:run)."""
     started = time.time()
-    result = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            universal_newlines=True, timeout=300)
+    with tempfile.TemporaryDirectory(
+            dir=os.environ.get("OMPI_MCA_orte_tmpdir_base")) as session:
+        environment = dict(os.environ, OMPI_MCA_orte_tmpdir_base=session)
+        result = subprocess.run(command, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                universal_newlines=True, timeout=300, env=environment)
     return result.returncode, result.stdout, result.stderr, time.time() - started
 
 
