@@ -325,8 +325,16 @@ namespace MPM
     averages_over_cells() const override
     {
       return rate_averaging == RateAveraging::cell ||
+             rate_averaging == RateAveraging::patch ||
              ((project_pressure || free_surface_fraction > 0) &&
               rate_averaging != RateAveraging::node);
+    }
+
+    /// With 'Pressure rate averaging = patch'.
+    bool
+    averages_over_patches() const override
+    {
+      return rate_averaging == RateAveraging::patch;
     }
 
     void
@@ -478,6 +486,7 @@ namespace MPM
     {
       none,
       cell,
+      patch,
       node
     };
     RateAveraging          rate_averaging = RateAveraging::cell;

@@ -158,21 +158,24 @@ namespace MPM
     std::vector<std::vector<Tensor<2, dim>>> chunk_gradients;
 
     /**
-     * 'Volumetric strain averaging = patch', for the @p n_cells cells of
-     * this step's loop: cell c's sums of V_p tr(grad v_p) and V_p over its
-     * points [begin, end) = @p points_of(c) (velocity gradients in
-     * point_gradients) in cell_rate_sums; each vertex's volume-weighted
+     * 'Volumetric strain averaging = patch' (and a phase kernel's
+     * PhaseKernel::averages_over_patches()), for the @p n_cells cells of
+     * this step's loop: cell c's sums of w_p r_p and w_p over its points
+     * [begin, end) = @p points_of(c), {r_p, w_p} = @p rate_of(p) (the
+     * skeleton's: tr(grad v_p) and V_p), in cell_rate_sums; each vertex's
+     * weighted
      * mean over the cells around it (on every rank: the sums go through
      * patch_sums, a nodal vector); each cell's mean of its vertices' means
      * in cell_patch_means[c]. @p dofs_of(c) gives cell c's vertex entries
      * (CellDofTable's), looked up once. Sums in the order of the cells, so
      * the same on any number of threads.
      */
-    template <typename PointsOf, typename DofsOf>
+    template <typename PointsOf, typename DofsOf, typename RateOf>
     void
     patch_mean_rates(const unsigned int n_cells,
                      const PointsOf    &points_of,
-                     const DofsOf      &dofs_of);
+                     const DofsOf      &dofs_of,
+                     const RateOf      &rate_of);
 
     using VertexDofs = typename CellDofTable<dim>::VertexDofs;
     std::vector<const VertexDofs *>    patch_cell_dofs;
@@ -325,15 +328,21 @@ namespace MPM
      * The points this->points[first, first + scratch.sums.size()) of one
      * cell, whose sums are in @p scratch and the first of which is
      * @p first_point in the ParticleHandler, updated by @p kernel with the
-     * mean of their rates (PhaseKernel::averages_over_cells()), then shown
-     * to it together with their positions (PhaseKernel::finish_cell()).
+     * mean of their rates (PhaseKernel::averages_over_cells()) or, if
+     * given, @p patch_mean (PhaseKernel::averages_over_patches()), then
+     * shown to it together with their positions
+     * (PhaseKernel::finish_cell()).
      */
     void
     update_phase_points_of_cell(
       const PhaseKernel<dim>                                     &kernel,
       const unsigned int                                          first,
       typename Particles::ParticleHandler<dim>::particle_iterator first_point,
-      PhaseCellScratch &scratch) const;
+      PhaseCellScratch                                           &scratch,
+      const double *patch_mean = nullptr) const;
+    /// update_phase_points() with patch means on weights whose entries
+    /// are the points: every point's sums, by entry.
+    std::vector<PhasePointSums> phase_point_sums;
   };
 } // namespace MPM
 

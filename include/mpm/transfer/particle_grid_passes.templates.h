@@ -539,11 +539,12 @@ namespace MPM
 
 
   template <int dim, class Weights>
-  template <typename PointsOf, typename DofsOf>
+  template <typename PointsOf, typename DofsOf, typename RateOf>
   void
   ParticleGridPasses<dim, Weights>::patch_mean_rates(const unsigned int n_cells,
                                                      const PointsOf &points_of,
-                                                     const DofsOf   &dofs_of)
+                                                     const DofsOf   &dofs_of,
+                                                     const RateOf   &rate_of)
   {
     // Each cell's vertex entries, looked up once.
     patch_cell_dofs.resize(n_cells);
@@ -557,9 +558,9 @@ namespace MPM
         const auto [begin, end] = points_of(c);
         for (unsigned int p = begin; p < end; ++p)
           {
-            const double V = this->points[p][PropertyLayout<dim>::volume];
-            cell_rate_sums[c][0] += V * trace(point_gradients[p]);
-            cell_rate_sums[c][1] += V;
+            const auto [rate, weight] = rate_of(p);
+            cell_rate_sums[c][0] += weight * rate;
+            cell_rate_sums[c][1] += weight;
           }
       }
     const NodalVector &mass = this->get_nodal_fields().mass;
@@ -611,6 +612,11 @@ namespace MPM
     const auto        &updater = this->get_point_update();
     const bool         average = updater.averages_volumetric_strain();
     const bool patch = updater.averages_volumetric_strain_over_patches();
+    // 'patch': point p's volumetric rate and its weight, its volume.
+    const auto volume_weighted_trace = [this](const unsigned int p) {
+      return std::make_pair(trace(point_gradients[p]),
+                            this->points[p][PropertyLayout<dim>::volume]);
+    };
     // MUSL with APIC, at the points whose C_p update_points_from_grid()
     // did not fit (Weights::fit_is_stable()): it is this velocity gradient
     // (Apic::store_affine()).
@@ -669,7 +675,8 @@ namespace MPM
               },
               [this](const unsigned int c) -> const auto & {
                 return this->active_cells[c].dofs;
-              });
+              },
+              volume_weighted_trace);
           }
         this->template for_active_cells<0>(
           {},
@@ -750,7 +757,8 @@ namespace MPM
               return this->get_cell_dofs()[point_cell_first_point[c]
                                              ->get_surrounding_cell()
                                              ->active_cell_index()];
-            });
+            },
+            volume_weighted_trace);
         // The points in chunks of their own cells (point_cell_begin).
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
           const unsigned int begin = point_cell_begin[c];
@@ -939,11 +947,83 @@ namespace MPM
       return Apic<dim>::affine_fit(fit.B, fit.D, fit.gradient, fit.node_scale);
     };
     const bool cell_means = kernel.averages_over_cells();
+    const bool patches    = cell_means && kernel.averages_over_patches();
+    // Point p's rate for the kernel's means and its weight.
+    const auto kernel_rate = [&](const unsigned int    p,
+                                 const PhasePointSums &sums) {
+      return kernel.cell_rate(this->points[p], sums.values, sums.gradients);
+    };
     if constexpr (Weights::entries_are_points)
       {
         if (cell_means)
           chunk_phase_scratch.resize(
             chunk_count(this->active_cells.size(), this->cell_chunk_size));
+        if (patches)
+          {
+            // Every point's sums first, then the patches' means of their
+            // rates, then the points cell by cell.
+            phase_point_sums.resize(this->points.size());
+            for_each_chunk(
+              this->active_cells.size(),
+              this->cell_chunk_size,
+              [&](const unsigned int,
+                  const unsigned int first,
+                  const unsigned int last) {
+                for (unsigned int c = first; c < last; ++c)
+                  {
+                    const ActiveCell  &cell = this->active_cells[c];
+                    const unsigned int end  = cell.first_entry + cell.n_points;
+                    for (unsigned int k = cell.first_entry; k < end; ++k)
+                      {
+                        PhasePointSums &sums = phase_point_sums[k];
+                        sums                 = PhasePointSums();
+                        AffineFitSums fit;
+                        add_entry(cell,
+                                  k,
+                                  sums.values.data(),
+                                  sums.gradients.data(),
+                                  fit_by_moments ? &fit : nullptr);
+                        sums.affine =
+                          affine_fit(this->points[k], fit, sums.gradients[0]);
+                      }
+                  }
+              });
+            patch_mean_rates(
+              this->active_cells.size(),
+              [this](const unsigned int c) {
+                const ActiveCell &cell = this->active_cells[c];
+                return std::make_pair(cell.first_entry,
+                                      cell.first_entry + cell.n_points);
+              },
+              [this](const unsigned int c) -> const auto & {
+                return this->active_cells[c].dofs;
+              },
+              [&](const unsigned int p) {
+                return kernel_rate(p, phase_point_sums[p]);
+              });
+            for_each_chunk(
+              this->active_cells.size(),
+              this->cell_chunk_size,
+              [&](const unsigned int chunk,
+                  const unsigned int first,
+                  const unsigned int last) {
+                PhaseCellScratch &scratch = chunk_phase_scratch[chunk];
+                for (unsigned int c = first; c < last; ++c)
+                  {
+                    const ActiveCell &cell = this->active_cells[c];
+                    scratch.sums.assign(phase_point_sums.begin() +
+                                          cell.first_entry,
+                                        phase_point_sums.begin() +
+                                          cell.first_entry + cell.n_points);
+                    update_phase_points_of_cell(kernel,
+                                                cell.first_entry,
+                                                cell.first_point,
+                                                scratch,
+                                                &cell_patch_means[c]);
+                  }
+              });
+            return;
+          }
         for_each_chunk(
           this->active_cells.size(),
           this->cell_chunk_size,
@@ -1030,10 +1110,34 @@ namespace MPM
         };
         if (cell_means)
           {
+            const unsigned int n_point_cells =
+              point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
+            if (patches)
+              patch_mean_rates(
+                n_point_cells,
+                [this](const unsigned int c) {
+                  return std::make_pair(point_cell_begin[c],
+                                        point_cell_begin[c + 1]);
+                },
+                [this](const unsigned int c) -> const auto & {
+                  return this->get_cell_dofs()[point_cell_first_point[c]
+                                                 ->get_surrounding_cell()
+                                                 ->active_cell_index()];
+                },
+                [&](const unsigned int p) {
+                  PhasePointSums sums;
+                  for (unsigned int s = 0; s < n_sources; ++s)
+                    {
+                      sums.values[s] =
+                        phase_values[std::size_t(p) * n_sources + s];
+                      sums.gradients[s] =
+                        phase_gradients[std::size_t(p) * n_sources + s];
+                    }
+                  return kernel_rate(p, sums);
+                });
             // The points in chunks of their own cells (point_cell_begin).
-            chunk_phase_scratch.resize(chunk_count(
-              point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
-              this->cell_chunk_size));
+            chunk_phase_scratch.resize(
+              chunk_count(n_point_cells, this->cell_chunk_size));
             for_point_cells([&](const unsigned int c,
                                 const unsigned int chunk) {
               PhaseCellScratch &scratch = chunk_phase_scratch[chunk];
@@ -1056,7 +1160,9 @@ namespace MPM
               update_phase_points_of_cell(kernel,
                                           point_cell_begin[c],
                                           point_cell_first_point[c],
-                                          scratch);
+                                          scratch,
+                                          patches ? &cell_patch_means[c] :
+                                                    nullptr);
             });
             return;
           }
@@ -1093,22 +1199,29 @@ namespace MPM
     const PhaseKernel<dim>                                     &kernel,
     const unsigned int                                          first,
     typename Particles::ParticleHandler<dim>::particle_iterator first_point,
-    PhaseCellScratch                                           &scratch) const
+    PhaseCellScratch                                           &scratch,
+    const double *patch_mean) const
   {
     const unsigned int n = scratch.sums.size();
     if (n == 0)
       return;
-    double sum = 0, weight = 0;
-    for (unsigned int q = 0; q < n; ++q)
+    double mean = 0;
+    if (patch_mean != nullptr)
+      mean = *patch_mean;
+    else
       {
-        const PhasePointSums &sums = scratch.sums[q];
-        const auto [rate, w]       = kernel.cell_rate(this->points[first + q],
-                                                sums.values,
-                                                sums.gradients);
-        sum += w * rate;
-        weight += w;
+        double sum = 0, weight = 0;
+        for (unsigned int q = 0; q < n; ++q)
+          {
+            const PhasePointSums &sums = scratch.sums[q];
+            const auto [rate, w] = kernel.cell_rate(this->points[first + q],
+                                                    sums.values,
+                                                    sums.gradients);
+            sum += w * rate;
+            weight += w;
+          }
+        mean = weight > 0 ? sum / weight : 0.;
       }
-    const double mean = weight > 0 ? sum / weight : 0.;
     scratch.positions.clear();
     auto point = first_point;
     for (unsigned int q = 0; q < n; ++q, ++point)

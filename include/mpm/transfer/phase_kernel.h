@@ -111,6 +111,21 @@ namespace MPM
       return false;
     }
 
+    /**
+     * With averages_over_cells(): whether the cells' means are averaged
+     * again over patches before update_point_with_cell_mean() takes them,
+     * each vertex taking the weighted mean of the cells around it and each
+     * cell the mean of its vertices (as the skeleton's 'Volumetric strain
+     * averaging = patch'). A rate whose cell means alternate in sign from
+     * cell to cell (the checkerboard that a pressure constant per cell
+     * cannot feel through its nodal forces) then has no mean to leave.
+     */
+    virtual bool
+    averages_over_patches() const
+    {
+      return false;
+    }
+
     /// A point's rate for the cell mean and its weight (e.g. its volume).
     virtual std::pair<double, double>
     cell_rate(const double                                  *props,
