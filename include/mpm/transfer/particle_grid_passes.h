@@ -177,6 +177,12 @@ namespace MPM
                      const DofsOf      &dofs_of,
                      const RateOf      &rate_of);
 
+    /// patch_mean_rates() over the cells of point_cell_begin (weights
+    /// whose entries are not the points).
+    template <typename RateOf>
+    void
+    patch_mean_rates_over_point_cells(const RateOf &rate_of);
+
     using VertexDofs = typename CellDofTable<dim>::VertexDofs;
     std::vector<const VertexDofs *>    patch_cell_dofs;
     NodalVector                        patch_sums;

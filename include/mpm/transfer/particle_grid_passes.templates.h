@@ -539,6 +539,27 @@ namespace MPM
 
 
   template <int dim, class Weights>
+  template <typename RateOf>
+  void
+  ParticleGridPasses<dim, Weights>::patch_mean_rates_over_point_cells(
+    const RateOf &rate_of)
+  {
+    patch_mean_rates(
+      point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
+      [this](const unsigned int c) {
+        return std::make_pair(point_cell_begin[c], point_cell_begin[c + 1]);
+      },
+      [this](const unsigned int c) -> const auto & {
+        return this->get_cell_dofs()[point_cell_first_point[c]
+                                       ->get_surrounding_cell()
+                                       ->active_cell_index()];
+      },
+      rate_of);
+  }
+
+
+
+  template <int dim, class Weights>
   template <typename PointsOf, typename DofsOf, typename RateOf>
   void
   ParticleGridPasses<dim, Weights>::patch_mean_rates(const unsigned int n_cells,
@@ -747,18 +768,7 @@ namespace MPM
         const unsigned int n_point_cells =
           point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
         if (patch)
-          patch_mean_rates(
-            n_point_cells,
-            [this](const unsigned int c) {
-              return std::make_pair(point_cell_begin[c],
-                                    point_cell_begin[c + 1]);
-            },
-            [this](const unsigned int c) -> const auto & {
-              return this->get_cell_dofs()[point_cell_first_point[c]
-                                             ->get_surrounding_cell()
-                                             ->active_cell_index()];
-            },
-            volume_weighted_trace);
+          patch_mean_rates_over_point_cells(volume_weighted_trace);
         // The points in chunks of their own cells (point_cell_begin).
         for_point_cells([&](const unsigned int c, const unsigned int chunk) {
           const unsigned int begin = point_cell_begin[c];
@@ -1113,28 +1123,17 @@ namespace MPM
             const unsigned int n_point_cells =
               point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
             if (patches)
-              patch_mean_rates(
-                n_point_cells,
-                [this](const unsigned int c) {
-                  return std::make_pair(point_cell_begin[c],
-                                        point_cell_begin[c + 1]);
-                },
-                [this](const unsigned int c) -> const auto & {
-                  return this->get_cell_dofs()[point_cell_first_point[c]
-                                                 ->get_surrounding_cell()
-                                                 ->active_cell_index()];
-                },
-                [&](const unsigned int p) {
-                  PhasePointSums sums;
-                  for (unsigned int s = 0; s < n_sources; ++s)
-                    {
-                      sums.values[s] =
-                        phase_values[std::size_t(p) * n_sources + s];
-                      sums.gradients[s] =
-                        phase_gradients[std::size_t(p) * n_sources + s];
-                    }
-                  return kernel_rate(p, sums);
-                });
+              patch_mean_rates_over_point_cells([&](const unsigned int p) {
+                PhasePointSums sums;
+                for (unsigned int s = 0; s < n_sources; ++s)
+                  {
+                    sums.values[s] =
+                      phase_values[std::size_t(p) * n_sources + s];
+                    sums.gradients[s] =
+                      phase_gradients[std::size_t(p) * n_sources + s];
+                  }
+                return kernel_rate(p, sums);
+              });
             // The points in chunks of their own cells (point_cell_begin).
             chunk_phase_scratch.resize(
               chunk_count(n_point_cells, this->cell_chunk_size));
