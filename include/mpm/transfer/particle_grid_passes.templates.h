@@ -765,8 +765,6 @@ namespace MPM
         Assert(!set_affine || (this->get_transfer().apic() != nullptr &&
                                point_second_moment.size() == n_points),
                ExcInternalError());
-        const unsigned int n_point_cells =
-          point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1;
         if (patch)
           patch_mean_rates_over_point_cells(volume_weighted_trace);
         // The points in chunks of their own cells (point_cell_begin).
