@@ -183,6 +183,12 @@ namespace MPM
     void
     patch_mean_rates_over_point_cells(const RateOf &rate_of);
 
+    /// patch_mean_rates() over active_cells (weights whose entries are the
+    /// points: a cell's entries are first_entry ... + n_points).
+    template <typename RateOf>
+    void
+    patch_mean_rates_over_active_cells(const RateOf &rate_of);
+
     using VertexDofs = typename CellDofTable<dim>::VertexDofs;
     std::vector<const VertexDofs *>    patch_cell_dofs;
     NodalVector                        patch_sums;

@@ -560,6 +560,27 @@ namespace MPM
 
 
   template <int dim, class Weights>
+  template <typename RateOf>
+  void
+  ParticleGridPasses<dim, Weights>::patch_mean_rates_over_active_cells(
+    const RateOf &rate_of)
+  {
+    patch_mean_rates(
+      this->active_cells.size(),
+      [this](const unsigned int c) {
+        const ActiveCell &cell = this->active_cells[c];
+        return std::make_pair(cell.first_entry,
+                              cell.first_entry + cell.n_points);
+      },
+      [this](const unsigned int c) -> const auto & {
+        return this->active_cells[c].dofs;
+      },
+      rate_of);
+  }
+
+
+
+  template <int dim, class Weights>
   template <typename PointsOf, typename DofsOf, typename RateOf>
   void
   ParticleGridPasses<dim, Weights>::patch_mean_rates(const unsigned int n_cells,
@@ -687,17 +708,7 @@ namespace MPM
                 for (unsigned int k = cell.first_entry; k < end; ++k)
                   point_gradients[k] = entry_gradient(k, v_node);
               });
-            patch_mean_rates(
-              this->active_cells.size(),
-              [this](const unsigned int c) {
-                const ActiveCell &cell = this->active_cells[c];
-                return std::make_pair(cell.first_entry,
-                                      cell.first_entry + cell.n_points);
-              },
-              [this](const unsigned int c) -> const auto & {
-                return this->active_cells[c].dofs;
-              },
-              volume_weighted_trace);
+            patch_mean_rates_over_active_cells(volume_weighted_trace);
           }
         this->template for_active_cells<0>(
           {},
@@ -996,19 +1007,9 @@ namespace MPM
                       }
                   }
               });
-            patch_mean_rates(
-              this->active_cells.size(),
-              [this](const unsigned int c) {
-                const ActiveCell &cell = this->active_cells[c];
-                return std::make_pair(cell.first_entry,
-                                      cell.first_entry + cell.n_points);
-              },
-              [this](const unsigned int c) -> const auto & {
-                return this->active_cells[c].dofs;
-              },
-              [&](const unsigned int p) {
-                return kernel_rate(p, phase_point_sums[p]);
-              });
+            patch_mean_rates_over_active_cells([&](const unsigned int p) {
+              return kernel_rate(p, phase_point_sums[p]);
+            });
             for_each_chunk(
               this->active_cells.size(),
               this->cell_chunk_size,
