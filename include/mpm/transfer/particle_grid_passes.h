@@ -177,17 +177,13 @@ namespace MPM
                      const DofsOf      &dofs_of,
                      const RateOf      &rate_of);
 
-    /// patch_mean_rates() over the cells of point_cell_begin (weights
-    /// whose entries are not the points).
+    /// patch_mean_rates() over the cells that hold points, in the order
+    /// the passes go through them (cell_patch_means[c] is that order's
+    /// c-th cell): active_cells where the weights' entries are the points,
+    /// the cells of point_cell_begin where they are not.
     template <typename RateOf>
     void
     patch_mean_rates_over_point_cells(const RateOf &rate_of);
-
-    /// patch_mean_rates() over active_cells (weights whose entries are the
-    /// points: a cell's entries are first_entry ... + n_points).
-    template <typename RateOf>
-    void
-    patch_mean_rates_over_active_cells(const RateOf &rate_of);
 
     using VertexDofs = typename CellDofTable<dim>::VertexDofs;
     std::vector<const VertexDofs *>    patch_cell_dofs;

@@ -544,38 +544,30 @@ namespace MPM
   ParticleGridPasses<dim, Weights>::patch_mean_rates_over_point_cells(
     const RateOf &rate_of)
   {
-    patch_mean_rates(
-      point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
-      [this](const unsigned int c) {
-        return std::make_pair(point_cell_begin[c], point_cell_begin[c + 1]);
-      },
-      [this](const unsigned int c) -> const auto & {
-        return this->get_cell_dofs()[point_cell_first_point[c]
-                                       ->get_surrounding_cell()
-                                       ->active_cell_index()];
-      },
-      rate_of);
-  }
-
-
-
-  template <int dim, class Weights>
-  template <typename RateOf>
-  void
-  ParticleGridPasses<dim, Weights>::patch_mean_rates_over_active_cells(
-    const RateOf &rate_of)
-  {
-    patch_mean_rates(
-      this->active_cells.size(),
-      [this](const unsigned int c) {
-        const ActiveCell &cell = this->active_cells[c];
-        return std::make_pair(cell.first_entry,
-                              cell.first_entry + cell.n_points);
-      },
-      [this](const unsigned int c) -> const auto & {
-        return this->active_cells[c].dofs;
-      },
-      rate_of);
+    if constexpr (Weights::entries_are_points)
+      patch_mean_rates(
+        this->active_cells.size(),
+        [this](const unsigned int c) {
+          const ActiveCell &cell = this->active_cells[c];
+          return std::make_pair(cell.first_entry,
+                                cell.first_entry + cell.n_points);
+        },
+        [this](const unsigned int c) -> const auto & {
+          return this->active_cells[c].dofs;
+        },
+        rate_of);
+    else
+      patch_mean_rates(
+        point_cell_begin.empty() ? 0 : point_cell_begin.size() - 1,
+        [this](const unsigned int c) {
+          return std::make_pair(point_cell_begin[c], point_cell_begin[c + 1]);
+        },
+        [this](const unsigned int c) -> const auto & {
+          return this->get_cell_dofs()[point_cell_first_point[c]
+                                         ->get_surrounding_cell()
+                                         ->active_cell_index()];
+        },
+        rate_of);
   }
 
 
@@ -708,7 +700,7 @@ namespace MPM
                 for (unsigned int k = cell.first_entry; k < end; ++k)
                   point_gradients[k] = entry_gradient(k, v_node);
               });
-            patch_mean_rates_over_active_cells(volume_weighted_trace);
+            patch_mean_rates_over_point_cells(volume_weighted_trace);
           }
         this->template for_active_cells<0>(
           {},
@@ -1007,7 +999,7 @@ namespace MPM
                       }
                   }
               });
-            patch_mean_rates_over_active_cells([&](const unsigned int p) {
+            patch_mean_rates_over_point_cells([&](const unsigned int p) {
               return kernel_rate(p, phase_point_sums[p]);
             });
             for_each_chunk(
