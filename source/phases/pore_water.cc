@@ -140,9 +140,9 @@ namespace MPM
       "shrink from -3.4 ... +3.2 kPa to -0.6 ... +0.3 kPa and the run "
       "reaches rest instead of inverting a CPDI domain at 0.665 s; "
       "doc/pore_water.md, 'Pressure stabilisation'). Meant with "
-      "'Pressure rate averaging = patch' or 'cell': with each point's own rate "
-      "the "
-      "cells' fits scatter instead. With 2 points per cell direction it "
+      "'Pressure rate averaging = patch' or 'cell': with each point's own "
+      "rate the cells' fits scatter instead. With 2 points per cell "
+      "direction it "
       "removes little (a saturated collapse: -2.8 ... +2.6 kPa at rest "
       "against -0.7 ... +1.0 kPa with 3): run saturated flows with 3. "
       "'none': each point keeps its own.");
