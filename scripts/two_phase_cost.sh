@@ -69,7 +69,7 @@ outcome() {
   if grep -q '^Done:' "$work/$1.log"; then
     echo finished
   else
-    echo "stopped: $(grep -m1 -o 'energy[a-z ]*created\|[Nn]on-finite[a-z ]*\|left the mesh' "$work/$1.log" | head -1 || echo "see the log")"
+    echo "stopped $(grep -m1 -o 'At step [0-9]*' "$work/$1.log" | sed 's/At step/at step/'): $(grep -m1 -o 'energy[a-z ]*created\|[Nn]on-finite[a-z ]*\|left the mesh' "$work/$1.log" | head -1 || echo "see the log")"
   fi
 }
 # compare CASE LABEL_A LABEL_B: runs the function CASE-A / CASE-B
