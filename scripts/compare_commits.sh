@@ -24,6 +24,8 @@
 # flume_0.3_apic_cpdi flume (the blend's cases name it: an older tree's
 # files may ship another transfer).
 set -euo pipefail
+# The shared helpers only (mpm_done_figures); both builds exist already.
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 old_root="$(cd "${1:?usage: compare_commits.sh OLD_ROOT [N] [CASE ...]}" && pwd)"
 n="${2:-3}"
@@ -82,7 +84,7 @@ run() {
        --set "Output/Write particles=false" --set "Output/Write mesh=false" \
        --set "Output/Directory=$work/$name" > "$work/$name.log" 2>&1) ||
     { echo "compare_commits.sh: the run $name failed, see its log:" >&2; tail -5 "$work/$name.log" >&2; exit 1; }
-  sed -n 's/^Done: \([0-9]*\) steps, \([0-9]*\) points, .*(steps \([0-9.e+-]*\) s).*/\1 \2 \3/p' "$work/$name.log"
+  mpm_done_figures "$work/$name.log"
 }
 
 printf '%-22s %8s %10s %10s %12s %12s %7s\n' case points "old (s)" "new (s)" "old (p-s/s)" "new (p-s/s)" "old/new"

@@ -50,10 +50,10 @@ run() {
     --set "Output/Write particles=false" --set "Output/Write mesh=false" \
     --set "Output/Directory=$work/$3" > "$work/$3.log" 2>&1 ||
     { echo "default_cost.sh: the run $3 failed, see its log:" >&2; tail -5 "$work/$3.log" >&2; exit 1; }
-  sed -n 's/^Done: \([0-9]*\) steps, \([0-9]*\) points, .*(steps \([0-9.e+-]*\) s).*/\1 \2 \3/p' "$work/$3.log"
+  mpm_done_figures "$work/$3.log"
 }
 
-echo "# $(date -u +%F), commit $(git -C "$MPM_ROOT" rev-parse --short HEAD), $(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')"
+mpm_benchmark_header
 printf '%-10s %8s %14s %14s %12s %12s %8s %6s\n' case points "blend (s)" "default (s)" "blend p-s/s" "default p-s/s" ratio bound
 for c in "${cases[@]}"; do
   flip_blend="$blend|Transfer/FLIP fraction time step=FLIPDT"

@@ -24,6 +24,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The distance s along the bed, as the flume postprocessor measures it.
+from flume_pore_pressure import bed_frame  # noqa: E402
+
 out = sys.argv[1] if len(sys.argv) > 1 else "output-flume"
 doc = sys.argv[2] if len(sys.argv) > 2 else os.path.join(
     os.path.dirname(os.path.abspath(__file__)), "..", "doc")
@@ -101,21 +105,10 @@ def read_points(index):
     return x[order], i[order]
 
 
-def bed_s(x, y):
-    """Distance along the bed from the arc's midpoint (as the postprocessor)."""
-    d, half = radius * math.tan(theta / 2), radius * theta / 2
-    u = np.array([math.cos(theta), -math.sin(theta)])
-    t1 = -d * u
-    along = (x - t1[0]) * u[0] + (y - t1[1]) * u[1]
-    psi = np.clip(np.arctan2(-(x - d), -(y - radius)), 0, theta)
-    return np.where(along <= 0, -half + along,
-                    np.where(x >= d, half + x - d, half - radius * psi))
-
-
 n_outputs = len(re.findall(r"<DataSet", open(os.path.join(out, "particles.pvd")).read()))
 x0, id0 = read_points(0)
 x1, id1 = read_points(n_outputs - 1)
-colour0 = bed_s(x0[:, 0], x0[:, 1])
+colour0 = bed_frame(x0[:, 0], x0[:, 1], theta, radius)[0]
 colour1 = colour0[np.searchsorted(id0, id1)]
 
 fig, ax = plt.subplots(figsize=(10, 3.6))

@@ -51,3 +51,16 @@ mpm_setup() {
   cmake --build "$dir" -j2 --target "${targets[@]}"
   MPM_BUILD_DIR="$dir"
 }
+
+# mpm_done_figures LOG: "steps points seconds" from the 'Done' line of an
+# mpm log (seconds: the wall time of the steps alone, what the benchmark
+# scripts compare); nothing if the run did not finish.
+mpm_done_figures() {
+  sed -n 's/^Done: \([0-9]*\) steps, \([0-9]*\) points, .*(steps \([0-9.e+-]*\) s).*/\1 \2 \3/p' "$1"
+}
+
+# mpm_benchmark_header: the line a benchmark's output starts with (date,
+# commit, cores, processor), so that its figures can be dated in doc/.
+mpm_benchmark_header() {
+  echo "# $(date -u +%F), commit $(git -C "$MPM_ROOT" rev-parse --short HEAD), $(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')"
+}

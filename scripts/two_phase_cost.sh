@@ -20,11 +20,12 @@
 #             the same with 0 (the critical-state skeleton alone), run
 #             alternately N times; the same columns as 'cost'.
 #  stability  The largest stable step against the bound the code takes
-#             (CFL 1 on the two phases' fast wave): the consolidation file
-#             at CFL 0.5 ... 1 and at fixed steps of 1.1 ... 2 times the
-#             step of CFL 1, to T = 0.3; the saturated flume at CFL 0.5 ...
-#             1 to 0.1 s. Prints whether the run finished or the stability
-#             check stopped it, and the consolidation's error at T = 0.05.
+#             (CFL 1 on the two phases' fast wave): the consolidation file,
+#             with its permeability and with a thousand times it, at fixed
+#             steps of 0.5 ... 2 times the step of CFL 1, to T = 0.3; the
+#             saturated flume at CFL 0.5 ... 1 to 0.1 s. Prints whether the
+#             run finished or where and why it stopped, and the
+#             consolidation's error at T = 0.05.
 #  error      Error against wall time for the consolidation: the shipped
 #             one-cell-wide column on 10 ... 160 cells over H to T = 1.01,
 #             for each 'Pressure rate averaging' (node, the file's; patch,
@@ -56,10 +57,6 @@ run() {
     --set "Output/Write particles=false" --set "Output/Write mesh=false" \
     --set "Output/Directory=$work/$name" > "$work/$name.log" 2>&1
 }
-# done_line NAME: "steps points seconds" of a finished run.
-done_line() {
-  sed -n 's/^Done: \([0-9]*\) steps, \([0-9]*\) points, .*(steps \([0-9.e+-]*\) s).*/\1 \2 \3/p' "$work/$1.log"
-}
 # last_step NAME: the step a run ended in (finished or stopped).
 last_step() {
   awk '!/^#/ { s = $2 } END { print s }' "$work/$1/statistics"
@@ -78,10 +75,10 @@ compare() {
   local c="$1" a_min="" b_min="" i t a_steps b_steps points
   for i in $(seq "$n"); do
     "$c-$2" "$c-$2-$i"
-    read -r a_steps points t <<< "$(done_line "$c-$2-$i")"
+    read -r a_steps points t <<< "$(mpm_done_figures "$work/$c-$2-$i.log")"
     a_min=$(printf '%s\n' $a_min "$t" | sort -g | head -1)
     "$c-$3" "$c-$3-$i"
-    read -r b_steps points t <<< "$(done_line "$c-$3-$i")"
+    read -r b_steps points t <<< "$(mpm_done_figures "$work/$c-$3-$i.log")"
     b_min=$(printf '%s\n' $b_min "$t" | sort -g | head -1)
   done
   awk -v c="$c" -v p="$points" -v as="$a_steps" -v bs="$b_steps" -v a="$a_min" -v b="$b_min" 'BEGIN {
@@ -100,8 +97,23 @@ suspension-on() { run "$1" submerged_collapse.prm "Time stepping/End time=0.2"; 
 report() {
   sed -n "s/^$2: \([-0-9.e+]*\).*/\1/p" "$work/$1/report.txt" 2>/dev/null | head -1
 }
+# error_row LABEL CELLS SETTING...: the consolidation's one-cell-wide
+# column on CELLS cells over H to T = 1.01 with the settings; prints a row
+# of the 'error' table.
+error_row() {
+  local label="$1" cells="$2" name width steps points t
+  shift 2
+  name="error-${label//[ ,]/_}-$cells"
+  width=$(awk -v c="$cells" 'BEGIN { printf "%.10g", 1 / c }')
+  run "$name" terzaghi_consolidation.prm "Mesh/Generator arguments={1, $cells} : 0, 0 : $width, 1 : true" \
+    "Material points/layer/Box=0, 0 : $width, 1" "$@"
+  read -r steps points t <<< "$(mpm_done_figures "$work/$name.log")"
+  printf '%-8s %6d %8d %10.3g %14s %14s %10s %10s\n' "$label" "$cells" "$steps" "$t" \
+    "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.05')" "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.2')" \
+    "$(report "$name" 'T at U = 0.5')" "$(report "$name" 'T at U = 0.9')"
+}
 
-echo "# $(date -u +%F), commit $(git -C "$MPM_ROOT" rev-parse --short HEAD), $(nproc) cores: $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')"
+mpm_benchmark_header
 
 consolidation_wide=("Mesh/Generator arguments={40, 40} : 0, 0 : 1, 1 : true"
                     "Material points/layer/Box=0, 0 : 1, 1")
@@ -156,32 +168,18 @@ for part in "${parts[@]}"; do
       printf '%-8s %6s %8s %10s %14s %14s %10s %10s\n' averaging cells steps "wall (s)" "err T=0.05" "err T=0.2" "T50" "T90"
       for averaging in node patch cell; do
         for cells in 10 20 40 80 160; do
-          name="error-$averaging-$cells"
-          width=$(awk -v c="$cells" 'BEGIN { printf "%.10g", 1 / c }')
-          run "$name" terzaghi_consolidation.prm "Mesh/Generator arguments={1, $cells} : 0, 0 : $width, 1 : true" \
-            "Material points/layer/Box=0, 0 : $width, 1" "Pore water/Pressure rate averaging=$averaging"
-          read -r steps points t <<< "$(done_line "$name")"
-          printf '%-8s %6d %8d %10.3g %14s %14s %10s %10s\n' "$averaging" "$cells" "$steps" "$t" \
-            "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.05')" "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.2')" \
-            "$(report "$name" 'T at U = 0.5')" "$(report "$name" 'T at U = 0.9')"
+          error_row "$averaging" "$cells" "Pore water/Pressure rate averaging=$averaging"
         done
       done
       # The same c_v with a skeleton ten times stiffer (M = 1e9 Pa, k =
       # 5e-12 m^2): the layer's inertia, what Terzaghi's quasi-static
       # theory leaves out, weighs less.
       for cells in 20 40 80 160; do
-        name="error-stiff-$cells"
-        width=$(awk -v c="$cells" 'BEGIN { printf "%.10g", 1 / c }')
-        run "$name" terzaghi_consolidation.prm "Mesh/Generator arguments={1, $cells} : 0, 0 : $width, 1 : true" \
-          "Material points/layer/Box=0, 0 : $width, 1" "Materials/soil/linear elastic/Young's modulus=1e9" \
+        error_row "node, M x 10" "$cells" "Materials/soil/linear elastic/Young's modulus=1e9" \
           "Materials/soil/Permeability=5e-12"
-        read -r steps points t <<< "$(done_line "$name")"
-        printf '%-8s %6d %8d %10.3g %14s %14s %10s %10s\n' "node, M x 10" "$cells" "$steps" "$t" \
-          "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.05')" "$(report "$name" 'max |u - u_T| \/ u0 at T = 0.2')" \
-          "$(report "$name" 'T at U = 0.5')" "$(report "$name" 'T at U = 0.9')"
       done
       echo "(series: T50 = 0.1967, T90 = 0.8481)"
       ;;
-    *) echo "two_phase_cost.sh: unknown part '$part' (cost, stability, error)" >&2; exit 1 ;;
+    *) echo "two_phase_cost.sh: unknown part '$part' (cost, rheology, stability, error)" >&2; exit 1 ;;
   esac
 done
