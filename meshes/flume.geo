@@ -1,8 +1,9 @@
 // The USGS miniature flume (Denlinger and Iverson 2001; Tjung et al.,
 // "Flume Test"): a bed inclined at 31.4 degrees, 2 m long, joined by a
-// circular arc of radius 0.1 m, tangent to both, to a horizontal runout 1 m
-// long. The domain extends H = 0.2 m above the bed (normal to the incline,
-// vertically above the runout).
+// circular arc of radius 0.1 m, tangent to both, to a horizontal runout
+// Lout long (default 1 m; the loose debris flow of doc/pore_water.md runs
+// further: -setnumber Lout 3). The domain extends H = 0.2 m above the bed
+// (normal to the incline, vertically above the runout).
 //
 // Coordinates: the incline and the runout, produced, meet at the origin
 // (the "break in slope"); the incline rises to the left (-x), the runout is
@@ -14,8 +15,8 @@
 //
 // Mesh: unstructured quadrilaterals (Frontal-Delaunay triangles recombined
 // by Blossom: all quads, angles 45-135 degrees, shortest edge 2.6 mm,
-// 16,116 cells), size h (default 5 mm, twice the paper's 2.5 mm) within
-// 0.14 m of the bed downslope of s = -0.75 m, growing to 3 h further away
+// 16,116 cells; 32,341 with Lout = 3), size h (default 5 mm, twice the
+// paper's 2.5 mm) within 0.14 m of the bed downslope of s = -0.75 m, growing to 3 h further away
 // (the upper incline and the top of the domain, where the sand never goes).
 // A finer mesh: gmsh -2 -format msh2 -setnumber h 0.0025 flume.geo -o X.msh
 //
@@ -25,10 +26,12 @@
 If (!Exists(h))
   h = 0.005;
 EndIf
+If (!Exists(Lout))
+  Lout = 1.0;  // runout length
+EndIf
 theta = 31.4 * Pi / 180;
 R     = 0.1;   // radius of the arc
 Lin   = 2.0;   // incline length along the slope, from the origin
-Lout  = 1.0;   // runout length
 H     = 0.2;   // height of the domain above the bed
 sfine = 0.75;  // fine mesh downslope of s = -sfine (distance along the bed)
 d     = R * Tan(theta / 2);  // origin to the tangent points

@@ -14,7 +14,11 @@ front (the leading 10 % of the points by s) and of the body (the rest):
 the mean pore pressure and the median of p / (p - sigma'_n), the pore
 pressure over the total normal stress on the bed's plane (sigma'_n the
 effective normal stress, compression negative): 1 where the sand is
-liquefied, about rho_w / rho_sat under hydrostatic pressure.
+liquefied, about rho_w / rho_sat under hydrostatic pressure. Points
+whose total normal stress is less than MIN_LOAD = 10 Pa of compression
+(the weight of about half a millimetre of saturated sand: a point at a
+thin front, or lifted off the bed) carry no such ratio and are left out
+of the median.
 """
 import math
 import os
@@ -27,6 +31,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_slope_stability import read_vtu  # noqa: E402
 
 BAND = 0.006
+MIN_LOAD = 10.0
 FRONT_SHARE = 0.1
 
 
@@ -76,8 +81,9 @@ def main(out):
         row = "%7.3f  %14.4f  %10.4f" % (float(t), s.max(), s95)
         for part in (s >= cut, s < cut):
             basal = part & (height < BAND)
-            if basal.any():
-                ratio = p[basal] / np.maximum(p[basal] - sigma_n[basal], 1e-12)
+            loaded = basal & (p - sigma_n >= MIN_LOAD)
+            if loaded.any():
+                ratio = p[loaded] / (p[loaded] - sigma_n[loaded])
                 row += " | %17.1f  %9.2f" % (p[basal].mean(), np.median(ratio))
             else:
                 row += " | %17s  %9s" % ("-", "-")
