@@ -16,8 +16,9 @@
 // Mesh: unstructured quadrilaterals (Frontal-Delaunay triangles recombined
 // by Blossom: all quads, angles 45-135 degrees, shortest edge 2.6 mm,
 // 16,116 cells; 32,341 with Lout = 3), size h (default 5 mm, twice the
-// paper's 2.5 mm) within 0.14 m of the bed downslope of s = -0.75 m, growing to 3 h further away
-// (the upper incline and the top of the domain, where the sand never goes).
+// paper's 2.5 mm) within 0.14 m of the bed downslope of s = -0.75 m,
+// growing to 3 h further away (the upper incline and the top of the
+// domain, where the sand never goes).
 // A finer mesh: gmsh -2 -format msh2 -setnumber h 0.0025 flume.geo -o X.msh
 //
 // Physical tags: boundary 1 = the bed (incline, arc, runout: one frictional
