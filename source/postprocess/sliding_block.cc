@@ -74,6 +74,18 @@ namespace MPM
                           "(rho_sat - rho_w) / rho_sat of the block's "
                           "material (doc/pore_water.md). Coulomb beds only.");
         prm.declare_entry(
+          "Excess pore pressure ratio",
+          "0",
+          Patterns::Double(0, 1),
+          "With 'Buoyant block': the share lambda of the buoyant "
+          "overburden that an excess pore pressure carries, p = rho_w g "
+          "cos(theta) (H - y) + lambda (rho_sat - rho_w) g cos(theta) (H - "
+          "y), held by a permeability too low to drain it within the run "
+          "(a liquefied layer as lambda -> 1): f = (1 - lambda) (rho_sat - "
+          "rho_w) / rho_sat. It tests the wall's pore pressure where the "
+          "pressure's gradient normal to the bed is not hydrostatic "
+          "(doc/pore_water.md, 'Friction in effective stress').");
+        prm.declare_entry(
           "Side-wall resistance",
           "0",
           Patterns::Double(0),
@@ -96,6 +108,10 @@ namespace MPM
         error_from = prm.get_double("Error from time");
         thickness  = prm.get_double("Block thickness");
         buoyant    = prm.get_bool("Buoyant block");
+        excess_ratio = prm.get_double("Excess pore pressure ratio");
+        check_input(excess_ratio == 0 || buoyant,
+                    "Postprocess/sliding block/Excess pore pressure ratio "
+                    "needs 'Buoyant block = true'.");
         side_wall_resistance = prm.get_double("Side-wall resistance");
       }
 
@@ -283,7 +299,8 @@ namespace MPM
                   const double rho_sat =
                     materials[m].density +
                     materials[m].porosity * water.density();
-                  f = (rho_sat - water.density()) / rho_sat;
+                  f = (1 - excess_ratio) * (rho_sat - water.density()) /
+                      rho_sat;
                   break;
                 }
           }
@@ -295,6 +312,7 @@ namespace MPM
       }
 
       bool   buoyant         = false;
+      double excess_ratio    = 0;
       double f               = 1;
       double theta_reference = 0;
       double g_reference     = 0;
