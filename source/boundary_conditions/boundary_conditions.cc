@@ -629,8 +629,7 @@ namespace MPM
             const Tensor<1, dim> &n = node.normal;
             const double          relief =
               pore_water_relief(water_drains_along(k, n),
-                                w.m_w * (w.v_w * n) / dt +
-                                  (w.F_w + w.G_w) * n,
+                                w.m_w * (w.v_w * n) / dt + w.F_w * n,
                                 w.m_w * (w.v_w_new * n) / dt,
                                 w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
                                   w.F_w * n,
@@ -801,7 +800,7 @@ namespace MPM
     };
     // The water's own push on each wall (without the drag), its push
     // after the drag, and the drag's force on it, per wall.
-    const auto own   = split(w.m_w * w.v_w / dt + w.F_w + w.G_w);
+    const auto own   = split(w.m_w * w.v_w / dt + w.F_w);
     const auto after = split(w.m_w * w.v_w_new / dt);
     const auto drag  = split(w.m_w * (w.v_w_new - w.v_w) / dt - w.F_w);
     for (unsigned int j = 0; j < 2; ++j)
@@ -826,7 +825,6 @@ namespace MPM
         w.v_w[c]             = water.brought_velocity.local_element(i);
         w.v_w_new[c]         = water.new_velocity.local_element(i);
         w.F_w[c]             = water.force.local_element(i);
-        w.G_w[c] = water.excess_gradient_force.local_element(i);
       }
     return w;
   }

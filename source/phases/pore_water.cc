@@ -236,8 +236,7 @@ namespace MPM
                                &force,
                                &skeleton_pressure_force,
                                &drag,
-                               &volume_sums,
-                               &excess_gradient_force})
+                               &volume_sums})
       nodal.add(*field, NodalFields::Ghosts::summed);
     nodal.add(nodal_porosity, NodalFields::Ghosts::computed);
     nodal.add(velocity, NodalFields::Ghosts::computed);
@@ -248,12 +247,14 @@ namespace MPM
         nodal,
         volume_sums,
         bulk_modulus,
-        typename NodalPressureRate<dim>::CellFinish(
-          [this](const ArrayView<double *const>    &props,
-                 const ArrayView<const Point<dim>> &positions,
-                 const double                       cell_volume) {
-            finish_cell_pressures(props, positions, cell_volume);
-          }));
+        project_pressure || free_surface_fraction > 0 ?
+          typename NodalPressureRate<dim>::CellFinish(
+            [this](const ArrayView<double *const>    &props,
+                   const ArrayView<const Point<dim>> &positions,
+                   const double                       cell_volume) {
+              finish_cell_pressures(props, positions, cell_volume);
+            }) :
+          typename NodalPressureRate<dim>::CellFinish());
   }
 
 
@@ -270,8 +271,6 @@ namespace MPM
           names.push_back(std::string("water_affine_") + "xyz"[a] + "xyz"[b]);
     if (rate_averaging == RateAveraging::node)
       names.push_back("volumetric_rate");
-    for (unsigned int d = 0; d < dim; ++d)
-      names.push_back("pore_pressure_gradient");
     return names;
   }
 
@@ -289,14 +288,10 @@ namespace MPM
           static_cast<unsigned int>(props[Layout::material_id]);
         const double n = material_porosity[material];
         props[porosity_slot()] = n;
-        const Point<dim> x = grid.to_scene_frame(particle.get_location());
-        props[pressure_slot()] = n > 0 ? initial_pressure->value(x) : 0.;
-        // Until the first step fits it over the cells.
-        const Tensor<1, dim> gradient =
-          n > 0 ? grid.to_mesh_frame(initial_pressure->gradient(x)) :
-                  Tensor<1, dim>();
-        for (unsigned int d = 0; d < dim; ++d)
-          props[pressure_gradient_slot() + d] = gradient[d];
+        props[pressure_slot()] =
+          n > 0 ? initial_pressure->value(
+                    grid.to_scene_frame(particle.get_location())) :
+                  0.;
         for (unsigned int d = 0; d < dim; ++d)
           props[velocity_slot() + d] = n > 0 ? props[Layout::velocity + d] : 0.;
         if (affine)
@@ -359,8 +354,7 @@ namespace MPM
              &force,
              &skeleton_pressure_force,
              &drag,
-             &volume_sums,
-             &excess_gradient_force}};
+             &volume_sums}};
   }
 
 
@@ -396,11 +390,6 @@ namespace MPM
              (n0 * n0 * n0 / ((1 - n0) * (1 - n0)));
       }
     const double Q = V * n * n * viscosity / k;
-    // The pressure's gradient less the hydrostatic one (the still water's
-    // is left out of p with 'Submerged').
-    const Tensor<1, dim> excess_gradient =
-      read_vector<dim>(&props[pressure_gradient_slot()]) -
-      (submerged ? 0. : water_density) * gravity;
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       {
         const double N = sf.value[i];
@@ -427,7 +416,6 @@ namespace MPM
         // The saturated volume at the nodes, in every component.
         for (unsigned int c = 0; c < dim; ++c)
           sums[5][i][c] += N * V;
-        sums[6][i] += (N * V * n) * excess_gradient;
       }
   }
 
@@ -654,36 +642,23 @@ namespace MPM
           {
             for (unsigned int q = 0; q < props.size(); ++q)
               if (props[q][porosity_slot()] > 0)
-                {
-                  props[q][pressure_slot()] = 0;
-                  for (unsigned int d = 0; d < dim; ++d)
-                    props[q][pressure_gradient_slot() + d] = 0;
-                }
+                props[q][pressure_slot()] = 0;
             return;
           }
       }
-    fit_cell_pressures(props, positions);
+    if (project_pressure)
+      project_cell_pressures(props, positions);
   }
 
 
   template <int dim>
   void
-  PoreWater<dim>::fit_cell_pressures(
+  PoreWater<dim>::project_cell_pressures(
     const ArrayView<double *const>    &props,
     const ArrayView<const Point<dim>> &positions) const
   {
     // The volume-weighted least-squares fit p = a + b . (x - xbar) over
-    // the cell's saturated points. Its slope b is each point's pressure
-    // gradient; along the directions the points do not span (one point,
-    // or points on a line) the gradient is the hydrostatic one, which
-    // leaves the walls' pore pressure as the water's nodal force has it.
-    const Tensor<1, dim> hydrostatic = (submerged ? 0. : water_density) * gravity;
-    const auto set_gradients = [&](const Tensor<1, dim> &gradient) {
-      for (unsigned int q = 0; q < props.size(); ++q)
-        if (props[q][porosity_slot()] > 0)
-          for (unsigned int d = 0; d < dim; ++d)
-            props[q][pressure_gradient_slot() + d] = gradient[d];
-    };
+    // the cell's saturated points.
     double     W = 0, a = 0;
     Point<dim> xbar;
     for (unsigned int q = 0; q < props.size(); ++q)
@@ -696,7 +671,6 @@ namespace MPM
         }
     if (W <= 0)
       return;
-    set_gradients(hydrostatic);
     a /= W;
     xbar /= W;
     SymmetricTensor<2, dim> S;
@@ -716,18 +690,13 @@ namespace MPM
     const double scale = trace(S);
     if (scale <= 0)
       return;
-    Tensor<1, dim> b, gradient = hydrostatic;
+    Tensor<1, dim> b;
     for (const auto &[lambda, e] : eigenvectors(S))
       if (lambda > 1e-8 * scale)
-        {
-          b += ((e * r) / lambda) * e;
-          gradient += ((e * r) / lambda - e * hydrostatic) * e;
-        }
-    set_gradients(gradient);
-    if (project_pressure)
-      for (unsigned int q = 0; q < props.size(); ++q)
-        if (props[q][porosity_slot()] > 0)
-          props[q][pressure_slot()] = a + b * (positions[q] - xbar);
+        b += ((e * r) / lambda) * e;
+    for (unsigned int q = 0; q < props.size(); ++q)
+      if (props[q][porosity_slot()] > 0)
+        props[q][pressure_slot()] = a + b * (positions[q] - xbar);
   }
 
 

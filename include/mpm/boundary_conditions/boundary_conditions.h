@@ -244,18 +244,10 @@ namespace MPM
      * mixture's reaction is the skeleton's plus the water's after the
      * drag, m_w v_w'.n / dt (the drag shares the phases' pushes on the
      * wall, their sum it does not change). p A is the water's own push
-     * without the drag, R_w0 = m_w v_w.n / dt + F_w.n, with what its
-     * nodal force lacks of the wall's pressure, G.n = sum_q N_i V_q n_q
-     * (grad p_q - rho_w g).n (by parts: sum_q V_q n_q (p_q grad N_i +
-     * N_i grad p_q) is the wall's integral of N_i n p): n_i p A = R_w0 +
-     * G.n, the pressure on the wall itself, not the nodal average of the
-     * points' pressures (half a cell above it). G is zero where the
-     * pressure is hydrostatic; under an excess pressure that grows with
-     * depth, R_w0 alone misses the excess gradient's weight of half a cell
-     * (a layer two cells thick carrying 0.8 of its buoyant weight by
-     * excess pore pressure slid 16 % slower than its closed form without
-     * G, 6e-5 with it; doc/pore_water.md, 'Friction in effective
-     * stress'). On a drained wall the water passes, the
+     * without the drag, R_w0 = m_w v_w.n / dt + F_w.n, which the water's
+     * momentum balance makes n_i p A: p A = R_w0 / n_i, the pressure on
+     * the wall itself, not the nodal average of the points' pressures
+     * (half a cell above it). On a drained wall the water passes, the
      * pressure is the wall's 'Pore pressure' (0 without one), whose push
      * the phases' forces hold already, and the effective normal force is
      * the skeleton's reaction plus the drag's normal force on the water
@@ -271,11 +263,8 @@ namespace MPM
     /**
      * The pore water at the nodes, for friction in effective stress: its
      * nodal porosity n_i, mass, the velocity it brought, its force (its
-     * own pressure and weight, without the drag), its new velocity
-     * (with the drag) before the walls hold it, and the integral of its
-     * excess pressure gradient, sum_q N_i V_q n_q (grad p_q - rho_w g),
-     * which the force lacks of the pore pressure on a wall where the
-     * pressure is not hydrostatic (PoreWater's excess_gradient_force).
+     * own pressure and weight, without the drag) and its new velocity
+     * (with the drag) before the walls hold it.
      */
     struct PoreWaterAtNodes
     {
@@ -284,7 +273,6 @@ namespace MPM
       const NodalVector &brought_velocity;
       const NodalVector &force;
       const NodalVector &new_velocity;
-      const NodalVector &excess_gradient_force;
     };
 
     void
@@ -493,7 +481,7 @@ namespace MPM
     struct NodeWater
     {
       double         m_w = 0, n_i = 0;
-      Tensor<1, dim> v_w, v_w_new, F_w, G_w;
+      Tensor<1, dim> v_w, v_w_new, F_w;
     };
     static NodeWater
     node_water(const ConstrainedNode &node, const PoreWaterAtNodes &water);

@@ -131,8 +131,8 @@ namespace MPM
       const std::array<Tensor<2, dim>, PhaseKernel<dim>::max_sources> &,
       const Tensor<2, dim> &) const override;
 
-    /// Where finish_cell() has work (PoreWater's: the cells' pressure
-    /// fits, their projection and drained free surface).
+    /// With a projection or a drained free surface: then finish_cell()
+    /// applies it.
     bool
     averages_over_cells() const override
     {

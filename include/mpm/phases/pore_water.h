@@ -131,16 +131,6 @@ namespace MPM
     {
       return affine_slot() + (affine ? dim * dim : 0);
     }
-
-    /// The pore pressure's gradient (dim slots) over the point's cell,
-    /// the slope of the cell's linear fit (finish_cell_pressures()): the
-    /// walls' pore pressure takes it (add_to_grid(), the seventh target).
-    unsigned int
-    pressure_gradient_slot() const
-    {
-      return volumetric_rate_slot() +
-             (rate_averaging == RateAveraging::node ? 1 : 0);
-    }
     /// @}
 
     /**
@@ -234,16 +224,13 @@ namespace MPM
     }
 
     /**
-     * The volume-weighted least-squares linear fit of the pore pressures
-     * of the saturated points @p props of one cell, at @p positions: its
-     * slope is each point's pressure gradient (pressure_gradient_slot();
-     * hydrostatic along directions the points do not span), and with
-     * 'Pressure projection = cell linear' the fit replaces their
-     * pressures.
+     * 'Pressure projection = cell linear': the pore pressures of the
+     * saturated points @p props of one cell, at @p positions, replaced by
+     * their volume-weighted least-squares linear fit over the cell.
      */
     void
-    fit_cell_pressures(const ArrayView<double *const>    &props,
-                       const ArrayView<const Point<dim>> &positions) const;
+    project_cell_pressures(const ArrayView<double *const>    &props,
+                           const ArrayView<const Point<dim>> &positions) const;
 
     /**
      * The water's and the skeleton's new nodal velocity with the drag
@@ -274,12 +261,7 @@ namespace MPM
     typename BoundaryConditions<dim>::PoreWaterAtNodes
     at_nodes() const
     {
-      return {nodal_porosity,
-              mass,
-              velocity,
-              force,
-              velocity_new,
-              excess_gradient_force};
+      return {nodal_porosity, mass, velocity, force, velocity_new};
     }
 
     /**
@@ -336,13 +318,16 @@ namespace MPM
                            &gradients,
       const Tensor<2, dim> &affine_fit) const override;
 
-    /// Wherever this pass updates the pressures (not with 'Pressure rate
-    /// averaging = node'): the cells' averaged rates, and their pressure
-    /// fits in finish_cell().
+    /// With 'Pressure rate averaging = cell', or 'Pressure projection =
+    /// cell linear' or a 'Free surface volume fraction' where this pass
+    /// updates the pressures.
     bool
     averages_over_cells() const override
     {
-      return rate_averaging != RateAveraging::node;
+      return rate_averaging == RateAveraging::cell ||
+             rate_averaging == RateAveraging::patch ||
+             ((project_pressure || free_surface_fraction > 0) &&
+              rate_averaging != RateAveraging::node);
     }
 
     /// With 'Pressure rate averaging = patch'.
@@ -360,7 +345,7 @@ namespace MPM
     /// What finish_cell() does with the pressures of one cell's points,
     /// in whichever pass updates them: drained if they fill less than
     /// 'Free surface volume fraction' of the cell's volume @p cell_volume,
-    /// else fitted (fit_cell_pressures()).
+    /// else projected ('Pressure projection').
     void
     finish_cell_pressures(const ArrayView<double *const>    &props,
                           const ArrayView<const Point<dim>> &positions,
@@ -518,13 +503,6 @@ namespace MPM
     /// sum N V over the saturated points, and the nodal porosity
     /// m_w / (rho_w sum N V) (at_nodes()), in every component.
     NodalVector volume_sums, nodal_porosity;
-    /// sum_q N_i V_q n_q (grad p_q - rho_w g) over the saturated points
-    /// (without the water's weight with 'Submerged'): what the water's
-    /// nodal force lacks of the pore pressure's force on a wall through
-    /// node i where the pressure is not hydrostatic (by parts, sum_q V_q
-    /// n_q (p_q grad N_i + N_i grad p_q) = the wall's integral of N_i n p;
-    /// BoundaryConditions::apply_friction()).
-    NodalVector excess_gradient_force;
     /// Brought (p / m) and end-of-step velocity.
     NodalVector velocity, velocity_new;
     /// The water's new velocity by its balance against the skeleton's
