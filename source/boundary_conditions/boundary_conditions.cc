@@ -629,7 +629,8 @@ namespace MPM
             const Tensor<1, dim> &n = node.normal;
             const double          relief =
               pore_water_relief(water_drains_along(k, n),
-                                w.m_w * (w.v_w * n) / dt + w.F_w * n,
+                                w.m_w * (w.v_w * n) / dt + w.F_w * n +
+                                  water->excess_push(node.local_dofs, n),
                                 w.m_w * (w.v_w_new * n) / dt,
                                 w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
                                   w.F_w * n,
@@ -804,8 +805,13 @@ namespace MPM
     const auto after = split(w.m_w * w.v_w_new / dt);
     const auto drag  = split(w.m_w * (w.v_w_new - w.v_w) / dt - w.F_w);
     for (unsigned int j = 0; j < 2; ++j)
-      relief[j] = pore_water_relief(
-        water_drains_along(k, n[j]), own[j], after[j], drag[j], w.n_i, m_s);
+      relief[j] = pore_water_relief(water_drains_along(k, n[j]),
+                                    own[j] +
+                                      water.excess_push(node.local_dofs, n[j]),
+                                    after[j],
+                                    drag[j],
+                                    w.n_i,
+                                    m_s);
     return relief;
   }
 

@@ -163,6 +163,28 @@ namespace MPM
       "steps, then thrown out of the mesh; doc/pore_water.md, 'A drained "
       "free surface'). 0: no point is drained this way (the weak form's "
       "natural condition p = 0 at a free surface alone).");
+    prm.declare_entry(
+      "Wall pore pressure",
+      "water push",
+      Patterns::Selection("water push|excess gradient"),
+      "The pore pressure on an impermeable frictional wall, whose Coulomb "
+      "friction takes the effective normal force (the mixture's reaction "
+      "less p A). 'water push': the water's own push on the wall without "
+      "the drag over the nodal porosity, exact where the pressure is "
+      "hydrostatic; under an excess pore pressure that grows with depth it "
+      "misses the excess gradient's weight over the half cell above the "
+      "wall (a layer carrying 0.8 of its buoyant weight by excess pore "
+      "pressure slides 15.9 / 31.9 % slow two / one cell thick). 'excess "
+      "gradient': adds that weight, the pore pressure's gradient normal to "
+      "the wall taken as its share r = p / (p - sigma'_nn) of the total "
+      "normal stress's, r rho g.n, from the saturated points' averages at "
+      "the node: the same layers slide within 2e-4 / 5e-4 of the closed "
+      "form (with the wall's 'Normal stress memory length'), and a "
+      "liquefied sheet one or two cells thick gets its pore pressure on "
+      "the bed (doc/pore_water.md, 'Friction in effective stress'). It "
+      "makes the friction depend on the effective stress at the wall: "
+      "without a normal stress memory, a stiff layer's normal vibration "
+      "feeds back into it (the one-cell layer then 25 % slow).");
     prm.leave_subsection();
   }
 
@@ -185,6 +207,7 @@ namespace MPM
     free_surface_fraction = prm.get_double("Free surface volume fraction");
     affine_requested      = prm.get("Water velocity transfer") == "affine";
     submerged             = prm.get_bool("Submerged");
+    wall_excess_gradient  = prm.get("Wall pore pressure") == "excess gradient";
     check_input(water_density > 0 && bulk_modulus > 0 && viscosity > 0,
                 "Pore water: Density (" + prm.get("Density") +
                   "), Bulk modulus (" + prm.get("Bulk modulus") +
@@ -238,6 +261,9 @@ namespace MPM
                                &drag,
                                &volume_sums})
       nodal.add(*field, NodalFields::Ghosts::summed);
+    if (wall_excess_gradient)
+      for (NodalVector &field : wall_state_sums)
+        nodal.add(field, NodalFields::Ghosts::summed);
     nodal.add(nodal_porosity, NodalFields::Ghosts::computed);
     nodal.add(velocity, NodalFields::Ghosts::computed);
     nodal.add(velocity_new, NodalFields::Ghosts::computed);
@@ -349,12 +375,19 @@ namespace MPM
   typename PhaseKernel<dim>::Targets
   PoreWater<dim>::grid_targets()
   {
-    return {{&mass,
-             &momentum,
-             &force,
-             &skeleton_pressure_force,
-             &drag,
-             &volume_sums}};
+    static_assert(6 + std::tuple_size_v<decltype(wall_state_sums)> <=
+                    PhaseKernel<dim>::max_targets,
+                  "PoreWater's grid targets exceed PhaseKernel::max_targets.");
+    typename PhaseKernel<dim>::Targets targets{{&mass,
+                                                &momentum,
+                                                &force,
+                                                &skeleton_pressure_force,
+                                                &drag,
+                                                &volume_sums}};
+    if (wall_excess_gradient)
+      for (unsigned int t = 0; t < wall_state_sums.size(); ++t)
+        targets[6 + t] = &wall_state_sums[t];
+    return targets;
   }
 
 
@@ -390,6 +423,23 @@ namespace MPM
              (n0 * n0 * n0 / ((1 - n0) * (1 - n0)));
       }
     const double Q = V * n * n * viscosity / k;
+    // The state excess_wall_push() reads at the nodes: the effective
+    // stress, the pore pressure and the mixture's density, packed dim to
+    // a target from the seventh on.
+    std::array<double, n_wall_state_values> state;
+    if (wall_excess_gradient)
+      {
+        const SymmetricTensor<2, 3> sigma =
+          read_symmetric_tensor(&props[Layout::stress]);
+        unsigned int v = 0;
+        for (unsigned int a = 0; a < dim; ++a)
+          state[v++] = sigma[a][a];
+        for (unsigned int a = 0; a < dim; ++a)
+          for (unsigned int b = a + 1; b < dim; ++b)
+            state[v++] = sigma[a][b];
+        state[v++] = p;
+        state[v++] = (props[Layout::mass] + m_w) / V;
+      }
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       {
         const double N = sf.value[i];
@@ -416,7 +466,43 @@ namespace MPM
         // The saturated volume at the nodes, in every component.
         for (unsigned int c = 0; c < dim; ++c)
           sums[5][i][c] += N * V;
+        if (wall_excess_gradient)
+          for (unsigned int v = 0; v < n_wall_state_values; ++v)
+            sums[6 + v / dim][i][v % dim] += (N * V) * state[v];
       }
+  }
+
+
+  template <int dim>
+  double
+  PoreWater<dim>::excess_wall_push(const std::array<unsigned int, dim> &dofs,
+                                   const Tensor<1, dim> &normal) const
+  {
+    if (!wall_excess_gradient)
+      return 0;
+    const double S = volume_sums.local_element(dofs[0]);
+    if (S <= 0)
+      return 0;
+    const auto value = [&](const unsigned int v) {
+      return wall_state_sums[v / dim].local_element(dofs[v % dim]) / S;
+    };
+    double       sigma_nn = 0;
+    unsigned int v        = 0;
+    for (unsigned int a = 0; a < dim; ++a)
+      sigma_nn += value(v++) * normal[a] * normal[a];
+    for (unsigned int a = 0; a < dim; ++a)
+      for (unsigned int b = a + 1; b < dim; ++b)
+        sigma_nn += 2 * value(v++) * normal[a] * normal[b];
+    const double p     = value(v++);
+    const double rho   = value(v++);
+    const double total = p - sigma_nn;
+    if (!(total > 0))
+      return 0;
+    const double r               = std::clamp(p / total, 0., 1.);
+    const double g_n             = gravity * normal;
+    const double excess_gradient = submerged ? r * (rho - water_density) * g_n :
+                                               (r * rho - water_density) * g_n;
+    return nodal_porosity.local_element(dofs[0]) * S * excess_gradient;
   }
 
 

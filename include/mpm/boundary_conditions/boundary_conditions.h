@@ -17,6 +17,7 @@
 #include <mpm/grid/nodal_vector.h>
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -264,7 +265,10 @@ namespace MPM
      * The pore water at the nodes, for friction in effective stress: its
      * nodal porosity n_i, mass, the velocity it brought, its force (its
      * own pressure and weight, without the drag) and its new velocity
-     * (with the drag) before the walls hold it.
+     * (with the drag) before the walls hold it; and what that force lacks
+     * of the pore pressure on a wall of outward normal n through the
+     * node of the given dofs where the pressure is not hydrostatic
+     * (PoreWater::excess_wall_push()).
      */
     struct PoreWaterAtNodes
     {
@@ -273,6 +277,9 @@ namespace MPM
       const NodalVector &brought_velocity;
       const NodalVector &force;
       const NodalVector &new_velocity;
+      std::function<double(const std::array<unsigned int, dim> &,
+                           const Tensor<1, dim> &)>
+        excess_push;
     };
 
     void

@@ -261,8 +261,46 @@ namespace MPM
     typename BoundaryConditions<dim>::PoreWaterAtNodes
     at_nodes() const
     {
-      return {nodal_porosity, mass, velocity, force, velocity_new};
+      return {nodal_porosity,
+              mass,
+              velocity,
+              force,
+              velocity_new,
+              [this](const std::array<unsigned int, dim> &dofs,
+                     const Tensor<1, dim>                &normal) {
+                return excess_wall_push(dofs, normal);
+              }};
     }
+
+    /**
+     * What the water's nodal force at the node of @p dofs lacks of the
+     * pore pressure's push n_i p A on a wall of outward normal @p normal
+     * through it, where the pressure is not hydrostatic.
+     *
+     * By parts, sum_q V_q n_q (p_q grad N_i + N_i grad p_q) is the wall's
+     * integral of N_i n p, and the nodal force holds only the first term
+     * (and the water's weight): the push lacks G.n = sum_q N_i V_q n_q
+     * (grad p_q - rho_w g).n, zero for hydrostatic water, the excess
+     * gradient's weight over the half cell above the wall otherwise (a
+     * layer sliding under an excess pore pressure of 0.8 of its buoyant
+     * weight, two cells thick, slid 16 % slow without it). The points'
+     * own pressure gradients are not known: within a cell they share one
+     * pressure rate, and the differences between them are an earlier
+     * state's, sheared with the flow (the cells' linear fits, tried, were
+     * noise in a flowing sheet). So the gradient normal to the wall is
+     * taken from the state at the node: the pore pressure keeps its
+     * share r = p / (p - sigma'_nn) of the total normal stress over the
+     * half cell, whose gradient is the mixture's weight rho g.n (a layer
+     * parallel to the wall, at rest normal to it): grad p.n = r rho g.n,
+     * with p, sigma' and rho the saturated points' averages at the node
+     * (weights N V, sum_q N V n_q = n_i sum_q N V). Exact for hydrostatic
+     * water (r = rho_w / rho) and for an excess pressure proportional to
+     * the depth. With 'Submerged' p is the excess over the still water's,
+     * and grad p.n = r (rho - rho_w) g.n.
+     */
+    double
+    excess_wall_push(const std::array<unsigned int, dim> &dofs,
+                     const Tensor<1, dim>                &normal) const;
 
     /**
      * The water's new velocity at the walls, at the nodes @p active_dofs:
@@ -495,6 +533,8 @@ namespace MPM
     bool               project_pressure = false;
     /// 'Free surface volume fraction' (0: none).
     double             free_surface_fraction = 0;
+    /// 'Wall pore pressure = excess gradient' (excess_wall_push()).
+    bool               wall_excess_gradient = false;
     Tensor<1, dim> gravity;
     const NodalVector *skeleton_velocity = nullptr;
 
@@ -503,6 +543,14 @@ namespace MPM
     /// sum N V over the saturated points, and the nodal porosity
     /// m_w / (rho_w sum N V) (at_nodes()), in every component.
     NodalVector volume_sums, nodal_porosity;
+    /// The saturated points' state at the nodes that excess_wall_push()
+    /// reads, sum N V of: the effective stress's components (the dim
+    /// diagonal ones, then those above the diagonal), the pore pressure
+    /// and the mixture's density, packed dim to a field.
+    static constexpr unsigned int n_wall_state_values =
+      dim + dim * (dim - 1) / 2 + 2;
+    std::array<NodalVector, (n_wall_state_values + dim - 1) / dim>
+      wall_state_sums;
     /// Brought (p / m) and end-of-step velocity.
     NodalVector velocity, velocity_new;
     /// The water's new velocity by its balance against the skeleton's

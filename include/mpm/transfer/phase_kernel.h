@@ -39,7 +39,7 @@ namespace MPM
     using VertexValues = std::array<Tensor<1, dim>, n_vertices>;
 
     /// Nodal fields a particle-to-grid pass of a phase may add to.
-    static constexpr unsigned int max_targets = 6;
+    static constexpr unsigned int max_targets = 9;
     /// Nodal fields a grid-to-particle pass of a phase may read.
     static constexpr unsigned int max_sources = 3;
 
