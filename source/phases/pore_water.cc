@@ -429,16 +429,16 @@ namespace MPM
     std::array<double, n_wall_state_values> state;
     if (wall_excess_gradient)
       {
-        const SymmetricTensor<2, 3> sigma =
+        const SymmetricTensor<2, 3> stored =
           read_symmetric_tensor(&props[Layout::stress]);
-        unsigned int v = 0;
+        SymmetricTensor<2, dim> sigma;
         for (unsigned int a = 0; a < dim; ++a)
-          state[v++] = sigma[a][a];
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = a + 1; b < dim; ++b)
-            state[v++] = sigma[a][b];
-        state[v++] = p;
-        state[v++] = (props[Layout::mass] + m_w) / V;
+          for (unsigned int b = a; b < dim; ++b)
+            sigma[a][b] = stored[a][b];
+        for (unsigned int k = 0; k < n_stress_values; ++k)
+          state[k] = sigma.access_raw_entry(k);
+        state[n_stress_values]     = p;
+        state[n_stress_values + 1] = (props[Layout::mass] + m_w) / V;
       }
     for (unsigned int i = 0; i < PhaseKernel<dim>::n_vertices; ++i)
       {
@@ -486,16 +486,12 @@ namespace MPM
     const auto value = [&](const unsigned int v) {
       return wall_state_sums[v / dim].local_element(dofs[v % dim]) / S;
     };
-    double       sigma_nn = 0;
-    unsigned int v        = 0;
-    for (unsigned int a = 0; a < dim; ++a)
-      sigma_nn += value(v++) * normal[a] * normal[a];
-    for (unsigned int a = 0; a < dim; ++a)
-      for (unsigned int b = a + 1; b < dim; ++b)
-        sigma_nn += 2 * value(v++) * normal[a] * normal[b];
-    const double p     = value(v++);
-    const double rho   = value(v++);
-    const double total = p - sigma_nn;
+    SymmetricTensor<2, dim> sigma;
+    for (unsigned int k = 0; k < n_stress_values; ++k)
+      sigma.access_raw_entry(k) = value(k);
+    const double p     = value(n_stress_values);
+    const double rho   = value(n_stress_values + 1);
+    const double total = p - normal * (sigma * normal);
     if (!(total > 0))
       return 0;
     const double r               = std::clamp(p / total, 0., 1.);

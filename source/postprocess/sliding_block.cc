@@ -103,11 +103,11 @@ namespace MPM
       void
       parse_parameters(ParameterHandler &prm) override
       {
-        theta      = prm.get_double("Slope angle") * M_PI / 180;
-        bed        = prm.get("Bed boundary");
-        error_from = prm.get_double("Error from time");
-        thickness  = prm.get_double("Block thickness");
-        buoyant    = prm.get_bool("Buoyant block");
+        theta        = prm.get_double("Slope angle") * M_PI / 180;
+        bed          = prm.get("Bed boundary");
+        error_from   = prm.get_double("Error from time");
+        thickness    = prm.get_double("Block thickness");
+        buoyant      = prm.get_bool("Buoyant block");
         excess_ratio = prm.get_double("Excess pore pressure ratio");
         check_input(excess_ratio == 0 || buoyant,
                     "Postprocess/sliding block/Excess pore pressure ratio "

@@ -3,6 +3,7 @@
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/particles/particle_handler.h>
 
 #include <mpm/boundary_conditions/boundary_conditions.h>
@@ -544,11 +545,12 @@ namespace MPM
     /// m_w / (rho_w sum N V) (at_nodes()), in every component.
     NodalVector volume_sums, nodal_porosity;
     /// The saturated points' state at the nodes that excess_wall_push()
-    /// reads, sum N V of: the effective stress's components (the dim
-    /// diagonal ones, then those above the diagonal), the pore pressure
-    /// and the mixture's density, packed dim to a field.
-    static constexpr unsigned int n_wall_state_values =
-      dim + dim * (dim - 1) / 2 + 2;
+    /// reads, sum N V of: the effective stress (SymmetricTensor's
+    /// independent components, in its own order), the pore pressure and
+    /// the mixture's density, packed dim to a field.
+    static constexpr unsigned int n_stress_values =
+      SymmetricTensor<2, dim>::n_independent_components;
+    static constexpr unsigned int n_wall_state_values = n_stress_values + 2;
     std::array<NodalVector, (n_wall_state_values + dim - 1) / dim>
       wall_state_sums;
     /// Brought (p / m) and end-of-step velocity.
