@@ -110,31 +110,6 @@ namespace MPM
     using typename ParticleGridWeights<dim>::ActiveCell;
 
     /**
-     * Dual domain gradients (DualDomainWeights; only where the entries are
-     * the points): the forces and the velocity gradient through nodal
-     * fields integrated over the active cells instead of the shape
-     * functions' gradients at the points, which jump where a point
-     * crosses a cell edge. Set by the weights' constructor, which also
-     * adds dual_domain_fields() to the step's nodal fields.
-     */
-    bool dual_domain = false;
-
-    /// The nodal fields of the dual domain gradients: the nodes' volumes
-    /// V_j (component 0 of each vertex), the rows of sum_p N_jp V_p
-    /// sigma_p and of V_j L_j.
-    std::vector<NodalVector *>
-    dual_domain_fields()
-    {
-      std::vector<NodalVector *> fields{&nodal_volume};
-      for (unsigned int a = 0; a < dim; ++a)
-        {
-          fields.push_back(&nodal_stress[a]);
-          fields.push_back(&nodal_gradient[a]);
-        }
-      return fields;
-    }
-
-    /**
      * The first point (index into point_properties()) of each cell holding
      * points, and one past the last: filled by prepare() of weights whose
      * entries are not the points.
@@ -220,79 +195,6 @@ namespace MPM
     /// speed among them.
     double
     record_chunk_findings();
-
-    /**
-     * Dual domain: what each active cell c contributes, computed from its
-     * vertices by Gauss quadrature (exact for the bilinear map's
-     * integrands in 2D: 2 points per direction; 3 in 3D):
-     * integrals[c].gradient[j][i] = int_c N_j grad N_i, .volume[j] =
-     * int_c N_j, and .fill = the points' volume over the cell's (the
-     * share of the cell the material fills, by which every integral over
-     * the cell is weighted).
-     */
-    struct CellIntegrals
-    {
-      std::array<std::array<Tensor<1, dim>, n_vertices>, n_vertices>
-                                     gradient;
-      std::array<double, n_vertices> volume;
-      double                         fill = 0;
-    };
-    std::vector<CellIntegrals> cell_integrals;
-
-    /**
-     * Dual domain: cell_integrals of this step's active cells and the
-     * nodes' volumes V_j = sum_c fill_c int_c N_j (nodal_volume, summed
-     * over the ranks).
-     */
-    void
-    integrate_active_cells();
-
-    /**
-     * Dual domain: the nodal stress sigma_j = sum_p N_jp V_p sigma_p / V_j
-     * and from it the forces f_i = -sum_c fill_c int_c sigma_h grad N_i,
-     * sigma_h = sum_j N_j sigma_j, added to @p force (not yet summed over
-     * the ranks). With the gradient of nodal_velocity_gradients() this
-     * keeps the power of the stress exact: sum_p V_p sigma_p : L_p =
-     * -sum_i v_i . f_i.
-     */
-    void
-    add_dual_domain_forces(NodalVector &force);
-
-    /**
-     * Dual domain: V_j L_j = sum_c fill_c int_c N_j grad v_h of the nodal
-     * velocity @p velocity into nodal_gradient (summed over the ranks); a
-     * point's velocity gradient is then sum_j N_jp L_j, continuous as it
-     * crosses a cell edge.
-     */
-    void
-    compute_nodal_velocity_gradients(const NodalVector &velocity);
-
-    /// Dual domain: the velocity gradient at entry @p k of @p cell from
-    /// nodal_gradient and nodal_volume.
-    Tensor<2, dim>
-    dual_domain_gradient(const ActiveCell &cell, const unsigned int k) const;
-
-    /**
-     * Dual domain: the share of a point's stress and velocity gradient
-     * taken at the point itself (with the shape functions' gradients
-     * there), alpha = 4^dim prod_d xi_d (1 - xi_d) = 4^dim N_0 N_last: 1 at
-     * the cell's centre, 0 on its edges, so that the sum stays continuous
-     * as a point crosses an edge. Without it the nodal averages alone let
-     * a checkerboard of nodal velocities through unresisted (their nodal
-     * gradient vanishes): measured unstable in a sheared layer.
-     */
-    static double
-    dual_domain_share(const Q1ShapeFunctions<dim> &sf)
-    {
-      double alpha = sf.value[0] * sf.value[n_vertices - 1];
-      for (unsigned int d = 0; d < dim; ++d)
-        alpha *= 4.;
-      return alpha;
-    }
-
-    NodalVector                 nodal_volume;
-    std::array<NodalVector, dim> nodal_stress;
-    std::array<NodalVector, dim> nodal_gradient;
 
     /// The weight function's hooks.
     const Weights &

@@ -124,8 +124,6 @@ namespace MPM
     const Apic<dim>     *apic  = this->get_transfer().apic();
     if (!Weights::entries_are_points)
       gather_point_transfer_data(with_forces);
-    if (dual_domain)
-      integrate_active_cells();
     if (apic != nullptr && !Weights::entries_are_points)
       {
         // APIC: each point's affine matrix at its weights of this step
@@ -199,8 +197,6 @@ namespace MPM
               }
           }
       });
-    if (with_forces && dual_domain)
-      add_dual_domain_forces(nodal.force);
     this->add_contributions_of_all_ranks(nodal.mass);
     this->add_contributions_of_all_ranks(nodal.momentum);
     if (with_forces)
@@ -243,8 +239,6 @@ namespace MPM
                 k, point.mass, point.volume, point.stress, g, forces[0]);
             }
       });
-    if (dual_domain)
-      add_dual_domain_forces(this->get_nodal_fields().force);
     this->add_contributions_of_all_ranks(this->get_nodal_fields().force);
   }
 
@@ -260,222 +254,8 @@ namespace MPM
     VertexValues         &forces) const
   {
     const auto &sf = this->shape_functions[k];
-    if (dual_domain)
-      {
-        // The point's own share (dual_domain_share()); the rest:
-        // add_dual_domain_forces().
-        const double own = dual_domain_share(sf) * V;
-        for (unsigned int i = 0; i < n_vertices; ++i)
-          forces[i] += -own * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
-        return;
-      }
     for (unsigned int i = 0; i < n_vertices; ++i)
       forces[i] += -V * (sigma * sf.gradient[i]) + (sf.value[i] * m) * g;
-  }
-
-
-  template <int dim, class Weights>
-  void
-  ParticleGridPasses<dim, Weights>::integrate_active_cells()
-  {
-    // Gauss points and weights on [0, 1]: 2 per direction integrate the
-    // 2D integrands N_j adj(J)^T grad_xi N_i exactly (degree 3 in each
-    // reference coordinate); in 3D adj(J) is of degree 2, hence 3.
-    constexpr unsigned int n_1d = (dim == 2 ? 2 : 3);
-    std::array<double, n_1d> xq, wq;
-    if constexpr (n_1d == 2)
-      {
-        xq = {{0.5 - 0.5 / std::sqrt(3.), 0.5 + 0.5 / std::sqrt(3.)}};
-        wq = {{0.5, 0.5}};
-      }
-    else
-      {
-        xq = {{0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)}};
-        wq = {{5. / 18, 8. / 18, 5. / 18}};
-      }
-    unsigned int n_q = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      n_q *= n_1d;
-    const unsigned int n_cells = this->active_cells.size();
-    cell_integrals.resize(n_cells);
-    for_each_chunk(
-      n_cells,
-      this->cell_chunk_size,
-      [&](const unsigned int, const unsigned int first, const unsigned int last) {
-        for (unsigned int c = first; c < last; ++c)
-          {
-            const ActiveCell &cell = this->active_cells[c];
-            const auto       &x    = *cell.vertices;
-            CellIntegrals    &integrals = cell_integrals[c];
-            integrals = CellIntegrals();
-            for (unsigned int q = 0; q < n_q; ++q)
-              {
-                Point<dim> xi;
-                double     weight = 1;
-                for (unsigned int d = 0, r = q; d < dim; ++d, r /= n_1d)
-                  {
-                    xi[d] = xq[r % n_1d];
-                    weight *= wq[r % n_1d];
-                  }
-                // The Jacobian's determinant from the reference gradients
-                // (vertex i at reference coordinate d = bit d of i).
-                Tensor<2, dim> jacobian;
-                for (unsigned int i = 0; i < n_vertices; ++i)
-                  {
-                    Tensor<1, dim> g;
-                    for (unsigned int d = 0; d < dim; ++d)
-                      {
-                        double gd = ((i >> d) & 1) ? 1. : -1.;
-                        for (unsigned int e = 0; e < dim; ++e)
-                          if (e != d)
-                            gd *= ((i >> e) & 1) ? xi[e] : 1. - xi[e];
-                        g[d] = gd;
-                      }
-                    jacobian += outer_product(x[i], g);
-                  }
-                const double        JxW = determinant(jacobian) * weight;
-                Q1ShapeFunctions<dim> sf;
-                sf.reinit(x, xi);
-                for (unsigned int j = 0; j < n_vertices; ++j)
-                  {
-                    integrals.volume[j] += sf.value[j] * JxW;
-                    for (unsigned int i = 0; i < n_vertices; ++i)
-                      integrals.gradient[j][i] +=
-                        (sf.value[j] * JxW) * sf.gradient[i];
-                  }
-              }
-            double cell_volume = 0, material_volume = 0;
-            for (unsigned int j = 0; j < n_vertices; ++j)
-              cell_volume += integrals.volume[j];
-            const unsigned int end = cell.first_entry + cell.n_points;
-            for (unsigned int k = cell.first_entry; k < end; ++k)
-              material_volume +=
-                this->points[weights().point_of_entry(k)]
-                            [PropertyLayout<dim>::volume];
-            integrals.fill = material_volume / cell_volume;
-          }
-      });
-    this->template for_active_cells<1>(
-      {{&nodal_volume}},
-      [&](const unsigned int c,
-          const unsigned int,
-          std::array<VertexValues, 1> &volume) {
-        const CellIntegrals &integrals = cell_integrals[c];
-        for (unsigned int j = 0; j < n_vertices; ++j)
-          volume[0][j][0] = integrals.fill * integrals.volume[j];
-      });
-    this->add_contributions_of_all_ranks(nodal_volume);
-  }
-
-
-  template <int dim, class Weights>
-  void
-  ParticleGridPasses<dim, Weights>::add_dual_domain_forces(NodalVector &force)
-  {
-    Assert(Weights::entries_are_points, ExcInternalError());
-    using Layout = PropertyLayout<dim>;
-    std::array<NodalVector *, dim> rows;
-    for (unsigned int a = 0; a < dim; ++a)
-      rows[a] = &nodal_stress[a];
-    // sum_p N_jp V_p sigma_p, row by row.
-    this->template for_active_cells<dim>(
-      rows,
-      [&](const unsigned int c,
-          const unsigned int,
-          std::array<VertexValues, dim> &sums) {
-        const ActiveCell  &cell = this->active_cells[c];
-        const unsigned int end  = cell.first_entry + cell.n_points;
-        for (unsigned int k = cell.first_entry; k < end; ++k)
-          {
-            const double        *props = this->points[k];
-            const auto          &sf    = this->shape_functions[k];
-            const Tensor<2, dim> sigma =
-              ((1. - dual_domain_share(sf)) * props[Layout::volume]) *
-              PointTransferData::in_plane_stress(props);
-            const auto &N = sf.value;
-            for (unsigned int j = 0; j < n_vertices; ++j)
-              for (unsigned int a = 0; a < dim; ++a)
-                sums[a][j] += N[j] * sigma[a];
-          }
-      });
-    for (unsigned int a = 0; a < dim; ++a)
-      this->add_contributions_of_all_ranks(nodal_stress[a]);
-    // f_i = -fill_c sum_j sigma_j int_c N_j grad N_i.
-    this->template for_active_cells<1>(
-      {{&force}},
-      [&](const unsigned int c,
-          const unsigned int,
-          std::array<VertexValues, 1> &forces) {
-        const ActiveCell    &cell      = this->active_cells[c];
-        const CellIntegrals &integrals = cell_integrals[c];
-        for (unsigned int j = 0; j < n_vertices; ++j)
-          {
-            const double   scale = -integrals.fill /
-                                 nodal_volume.local_element(cell.dofs[j][0]);
-            Tensor<2, dim> sigma_j;
-            for (unsigned int a = 0; a < dim; ++a)
-              for (unsigned int b = 0; b < dim; ++b)
-                sigma_j[a][b] = nodal_stress[a].local_element(cell.dofs[j][b]);
-            sigma_j *= scale;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              forces[0][i] += sigma_j * integrals.gradient[j][i];
-          }
-      });
-  }
-
-
-  template <int dim, class Weights>
-  void
-  ParticleGridPasses<dim, Weights>::compute_nodal_velocity_gradients(
-    const NodalVector &velocity)
-  {
-    std::array<NodalVector *, dim> rows;
-    for (unsigned int a = 0; a < dim; ++a)
-      {
-        rows[a] = &nodal_gradient[a];
-        this->zero_touched_entries(nodal_gradient[a]);
-      }
-    // V_j L_j = fill_c sum_i v_i (x) int_c N_j grad N_i, row by row.
-    this->template for_active_cells<dim>(
-      rows,
-      [&](const unsigned int c,
-          const unsigned int,
-          std::array<VertexValues, dim> &sums) {
-        const ActiveCell    &cell      = this->active_cells[c];
-        const CellIntegrals &integrals = cell_integrals[c];
-        const VertexValues   v_node    = this->read_nodes(cell, velocity);
-        for (unsigned int j = 0; j < n_vertices; ++j)
-          {
-            Tensor<2, dim> L;
-            for (unsigned int i = 0; i < n_vertices; ++i)
-              L += outer_product(v_node[i], integrals.gradient[j][i]);
-            L *= integrals.fill;
-            for (unsigned int a = 0; a < dim; ++a)
-              sums[a][j] += L[a];
-          }
-      });
-    for (unsigned int a = 0; a < dim; ++a)
-      this->add_contributions_of_all_ranks(nodal_gradient[a]);
-  }
-
-
-  template <int dim, class Weights>
-  Tensor<2, dim>
-  ParticleGridPasses<dim, Weights>::dual_domain_gradient(
-    const ActiveCell  &cell,
-    const unsigned int k) const
-  {
-    const auto    &N = this->shape_functions[k].value;
-    Tensor<2, dim> L;
-    for (unsigned int j = 0; j < n_vertices; ++j)
-      {
-        const double scale =
-          N[j] / nodal_volume.local_element(cell.dofs[j][0]);
-        for (unsigned int a = 0; a < dim; ++a)
-          for (unsigned int b = 0; b < dim; ++b)
-            L[a][b] += scale * nodal_gradient[a].local_element(cell.dofs[j][b]);
-      }
-    return L;
   }
 
 
@@ -904,11 +684,7 @@ namespace MPM
         chunk_findings.resize(n_chunks);
         if (average)
           chunk_gradients.resize(n_chunks);
-        // Dual domain: from the nodal velocity gradients.
-        const bool precomputed = patch || dual_domain;
-        if (dual_domain)
-          compute_nodal_velocity_gradients(velocity);
-        if (precomputed)
+        if (patch)
           {
             // The points' velocity gradients first (kept for the stress
             // below), and from them the cells' and vertices' means.
@@ -918,25 +694,13 @@ namespace MPM
               [&](const unsigned int c,
                   const unsigned int,
                   std::array<VertexValues, 0> &) {
-                const ActiveCell  &cell = this->active_cells[c];
-                const unsigned int end  = cell.first_entry + cell.n_points;
+                const ActiveCell  &cell   = this->active_cells[c];
                 const VertexValues v_node = this->read_nodes(cell, velocity);
-                if (dual_domain)
-                  for (unsigned int k = cell.first_entry; k < end; ++k)
-                    {
-                      const double own =
-                        dual_domain_share(this->shape_functions[k]);
-                      point_gradients[k] =
-                        own * entry_gradient(k, v_node) +
-                        (1. - own) * dual_domain_gradient(cell, k);
-
-                    }
-                else
-                  for (unsigned int k = cell.first_entry; k < end; ++k)
-                    point_gradients[k] = entry_gradient(k, v_node);
+                const unsigned int end    = cell.first_entry + cell.n_points;
+                for (unsigned int k = cell.first_entry; k < end; ++k)
+                  point_gradients[k] = entry_gradient(k, v_node);
               });
-            if (patch)
-              patch_mean_rates_over_point_cells(volume_weighted_trace);
+            patch_mean_rates_over_point_cells(volume_weighted_trace);
           }
         this->template for_active_cells<0>(
           {},
@@ -963,9 +727,7 @@ namespace MPM
                   chunk_gradients[chunk];
                 cell_gradients.resize(cell.n_points);
                 for (unsigned int q = 0; q < cell.n_points; ++q)
-                  cell_gradients[q] = precomputed ?
-                                        point_gradients[k0 + q] :
-                                        entry_gradient(k0 + q, v_node);
+                  cell_gradients[q] = entry_gradient(k0 + q, v_node);
                 gradients = cell_gradients.data();
                 PointUpdate<dim>::average_volumetric_part(
                   this->points.data() + k0, gradients, cell.n_points);
@@ -975,9 +737,7 @@ namespace MPM
                 const unsigned int k = k0 + q;
                 update_point(
                   k,
-                  gradients   ? gradients[q] :
-                  precomputed ? point_gradients[k] :
-                                entry_gradient(k, v_node),
+                  gradients ? gradients[q] : entry_gradient(k, v_node),
                   store_gradient(this->points[k]) ?
                     Apic<dim>::second_moment(this->shape_functions[k].value,
                                              weights().node_offsets(cell, k)) :
@@ -1124,10 +884,6 @@ namespace MPM
   void
   ParticleGridPasses<dim, Weights>::map_phase(PhaseKernel<dim> &kernel)
   {
-    AssertThrow(!dual_domain,
-                ExcMessage("'Transfer/Particle-grid weights = dual domain' "
-                           "does not carry a second phase (pore water) yet: "
-                           "use 'linear' or 'cpdi'."));
     using Kernel                 = PhaseKernel<dim>;
     const typename Kernel::Targets targets = kernel.grid_targets();
     const bool                     affine  = kernel.needs_affine();
