@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -363,6 +364,30 @@ namespace MPM
     absorbing.setup(grid, specs, layout, periodic_nodes);
     pore_pressures.setup(grid, specs, layout, periodic_nodes);
     compute_frictional_wall_area(grid, layout, periodic_nodes);
+    // A periodic node's copies are one node: record_wall_tractions() keeps
+    // the copy of the least global index.
+    periodic_copy.assign(nodes.size(), false);
+    if (periodic_nodes != nullptr)
+      {
+        const auto &partitioner = *layout.get_partitioner();
+        for (unsigned int k = 0; k < nodes.size(); ++k)
+          {
+            const unsigned int i = nodes[k].local_dofs[0];
+            try
+              {
+                periodic_nodes->for_each_copy(i, [&](const unsigned int j) {
+                  if (partitioner.local_to_global(j) <
+                      partitioner.local_to_global(i))
+                    periodic_copy[k] = true;
+                });
+              }
+            catch (const InputError &)
+              {
+                // A group this rank does not see whole: a ghost node that
+                // another rank records.
+              }
+          }
+      }
     // The pore water's walls: the same without the drained ones.
     water_nodes.clear();
     if (std::any_of(specs.begin(), specs.end(), [](const auto &s) {
@@ -586,6 +611,10 @@ namespace MPM
                                           const double       dt,
                                           const PoreWaterAtNodes *water)
   {
+    if (recording_tractions)
+      recorded_tractions.clear();
+    const unsigned int n_owned =
+      mass.get_partitioner()->locally_owned_size();
     for (unsigned int k = 0; k < nodes.size(); ++k)
       {
         const auto &node = nodes[k];
@@ -604,6 +633,10 @@ namespace MPM
             a[c] = acceleration.local_element(node.local_dofs[c]);
           }
         bool         sticks = false;
+        // For record_wall_tractions(): the acceleration before the wall's
+        // resistance and the pore water's push p A.
+        const Tensor<1, dim> a_before = a;
+        double               pore_pressure_force = 0;
         // With pore water: the effective normal force is the mixture's
         // reaction, R_s + R_w, less p A. Friction takes it from the
         // skeleton's reaction R_s by the relief p A - R_w (per unit
@@ -627,10 +660,17 @@ namespace MPM
           {
             const NodeWater       w = node_water(node, *water);
             const Tensor<1, dim> &n = node.normal;
-            const double          relief =
-              pore_water_relief(water_drains_along(k, n),
-                                w.m_w * (w.v_w * n) / dt + w.F_w * n +
-                                  water->excess_push(node.local_dofs, n),
+            const bool            drains = water_drains_along(k, n);
+            const double          own =
+              w.m_w * (w.v_w * n) / dt + w.F_w * n +
+              water->excess_push(node.local_dofs, n);
+            pore_pressure_force =
+              drains     ? std::numeric_limits<double>::quiet_NaN() :
+              w.n_i > 0 ? std::max(own, 0.) / w.n_i :
+                          0.;
+            const double relief =
+              pore_water_relief(drains,
+                                own,
                                 w.m_w * (w.v_w_new * n) / dt,
                                 w.m_w * ((w.v_w_new - w.v_w) * n) / dt -
                                   w.F_w * n,
@@ -677,6 +717,30 @@ namespace MPM
                 remembered_edge_impulses);
         if (sticks)
           contact_state[k] = ContactState::stuck;
+        if (recording_tractions && node.frictional &&
+            node.local_dofs[0] < n_owned && !periodic_copy[k])
+          {
+            const double         m = mass.local_element(node.local_dofs[0]);
+            const Tensor<1, dim> &n = node.normal;
+            const double reaction =
+              WallFriction::normal_reaction(v, a_before, n, dt);
+            WallTraction t;
+            t.location   = node.location;
+            t.normal     = n;
+            t.area       = wall_area.local_element(node.local_dofs[0]);
+            t.in_contact = reaction > 0;
+            t.stuck      = sticks;
+            t.effective_normal_force =
+              t.in_contact ?
+                m * effective_reaction.value_or(reaction) :
+                0.;
+            t.pore_pressure_force = pore_pressure_force;
+            const Tensor<1, dim> wall_force = m * (a - a_before);
+            t.tangential_force = (wall_force - (wall_force * n) * n).norm();
+            const Tensor<1, dim> v_new = v + dt * a;
+            t.slip_speed              = (v_new - (v_new * n) * n).norm();
+            recorded_tractions.push_back(t);
+          }
         for (unsigned int c = 0; c < dim; ++c)
           acceleration.local_element(node.local_dofs[c]) = a[c];
       }

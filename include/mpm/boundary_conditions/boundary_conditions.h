@@ -289,6 +289,58 @@ namespace MPM
                    const double            dt,
                    const PoreWaterAtNodes *water = nullptr);
 
+    /**
+     * What a frictional wall node took in the last nodal update
+     * (apply_friction()), for the 'wall tractions' postprocessor: the
+     * bed's stresses as a basal force plate and a pore-pressure sensor
+     * would read them. Forces over the node's share of the wall, A =
+     * int_wall N_i dA, give stresses.
+     */
+    struct WallTraction
+    {
+      /// The node's mesh vertex and the wall's unit outward normal.
+      Point<dim>     location;
+      Tensor<1, dim> normal;
+      /// The node's share of its walls' area A (m^2 in 3D, m in 2D).
+      double area = 0;
+      /// The effective normal force the Coulomb part took (N; the
+      /// remembered one with a 'Normal stress memory length'), the pore
+      /// water's push p A on an impermeable wall (its excess over the
+      /// still water's in a 'Submerged' scene; NaN on a drained wall and
+      /// 0 without pore water), and the wall's tangential force on the
+      /// material (N, against its slip).
+      double effective_normal_force = 0;
+      double pore_pressure_force    = 0;
+      double tangential_force       = 0;
+      /// The node's tangential speed after the update (m/s).
+      double slip_speed = 0;
+      /// Whether the material pushed on the wall, and whether it stuck.
+      bool in_contact = false;
+      bool stuck      = false;
+    };
+
+    /**
+     * Keep each frictional node's WallTraction from the next nodal update
+     * on (a diagnostic, off unless a postprocessor asks: the walls' own
+     * state is not changed by it).
+     */
+    void
+    record_wall_tractions() const
+    {
+      recording_tractions = true;
+    }
+
+    /**
+     * The WallTraction of each frictional node this rank owns (3D edge
+     * nodes, held by two walls, are left out; of a periodic node's copies,
+     * one), from the last nodal update since record_wall_tractions().
+     */
+    const std::vector<WallTraction> &
+    wall_tractions() const
+    {
+      return recorded_tractions;
+    }
+
     /// The names of the boundaries with a 'Pore pressure'.
     std::vector<std::string>
     pore_pressure_boundaries() const
@@ -516,6 +568,12 @@ namespace MPM
     /// int_wall N_i dA (zero elsewhere): what turns the pore pressure on
     /// the wall into a nodal force (apply_friction()).
     NodalVector wall_area;
+    /// record_wall_tractions(), wall_tractions(): a diagnostic that const
+    /// observers switch on.
+    mutable bool              recording_tractions = false;
+    std::vector<WallTraction> recorded_tractions;
+    /// Per node: a periodic copy of a node of lower global index.
+    std::vector<bool> periodic_copy;
   };
 } // namespace MPM
 
