@@ -368,26 +368,10 @@ namespace MPM
     // the copy of the least global index.
     periodic_copy.assign(nodes.size(), false);
     if (periodic_nodes != nullptr)
-      {
-        const auto &partitioner = *layout.get_partitioner();
-        for (unsigned int k = 0; k < nodes.size(); ++k)
-          {
-            const unsigned int i = nodes[k].local_dofs[0];
-            try
-              {
-                periodic_nodes->for_each_copy(i, [&](const unsigned int j) {
-                  if (partitioner.local_to_global(j) <
-                      partitioner.local_to_global(i))
-                    periodic_copy[k] = true;
-                });
-              }
-            catch (const InputError &)
-              {
-                // A group this rank does not see whole: a ghost node that
-                // another rank records.
-              }
-          }
-      }
+      for (unsigned int k = 0; k < nodes.size(); ++k)
+        periodic_copy[k] =
+          periodic_nodes->is_later_copy(nodes[k].local_dofs[0],
+                                        *layout.get_partitioner());
     // The pore water's walls: the same without the drained ones.
     water_nodes.clear();
     if (std::any_of(specs.begin(), specs.end(), [](const auto &s) {

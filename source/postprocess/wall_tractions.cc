@@ -4,6 +4,7 @@
 #include <mpm/postprocess/postprocessor.h>
 #include <mpm/solver/simulator.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>

@@ -117,6 +117,27 @@ namespace MPM
           f(members[k]);
     }
 
+    /**
+     * Whether the local entry @p i has a copy of lower global index in
+     * @p partitioner's numbering (its group's other entries): of a
+     * periodic node's copies, all but one. False outside a group and in a
+     * group this rank does not see whole.
+     */
+    bool
+    is_later_copy(const unsigned int                 i,
+                  const Utilities::MPI::Partitioner &partitioner) const
+    {
+      if (group_of_entry.empty() || group_of_entry[i] == none ||
+          group_of_entry[i] == incomplete)
+        return false;
+      const unsigned int g = group_of_entry[i];
+      for (unsigned int k = first_member[g]; k < first_member[g + 1]; ++k)
+        if (partitioner.local_to_global(members[k]) <
+            partitioner.local_to_global(i))
+          return true;
+      return false;
+    }
+
   private:
     static constexpr unsigned int none       = numbers::invalid_unsigned_int;
     static constexpr unsigned int incomplete = none - 1;
