@@ -120,7 +120,8 @@ namespace MPM
                           "For the pore water of saturated materials "
                           "(doc/pore_water.md), a wall (fixed, slip, "
                           "friction, velocity) is impermeable (the water's "
-                          "normal velocity is held as the skeleton's) or "
+                          "normal velocity is held as the skeleton's; its "
+                          "tangential one is free, also on a fixed wall) or "
                           "drained (the water passes: its velocity is free "
                           "there and the pore pressure on the wall zero, "
                           "as on a filter). Free and traction boundaries "
@@ -372,16 +373,24 @@ namespace MPM
         periodic_copy[k] =
           periodic_nodes->is_later_copy(nodes[k].local_dofs[0],
                                         *layout.get_partitioner());
-    // The pore water's walls: the same without the drained ones.
+    // The pore water's walls: the skeleton's without the drained ones,
+    // and a fixed wall holds the water's normal velocity alone. The
+    // water's momentum balance has no shear stress (its force on the
+    // skeleton is the drag), so no wall condition on its tangential
+    // velocity: along a no-slip wall the water seeps as anywhere else.
     water_nodes.clear();
-    if (std::any_of(specs.begin(), specs.end(), [](const auto &s) {
-          return s.drained && is_wall(s.type);
+    if (with_pore_water &&
+        std::any_of(specs.begin(), specs.end(), [](const auto &s) {
+          return is_wall(s.type) &&
+                 (s.drained || s.type == BoundaryType::fixed);
         }))
       {
         auto water_specs = specs;
         for (auto &s : water_specs)
           if (s.drained)
             s.type = BoundaryType::free;
+          else if (s.type == BoundaryType::fixed)
+            s.type = BoundaryType::slip;
         const auto water_frames = compute_node_frames(
           grid, layout, water_specs, gravity_magnitude, periodic_nodes);
         AffineConstraints<double> water_constraints;
@@ -390,7 +399,7 @@ namespace MPM
                               water_constraints);
         water_nodes =
           make_projections(water_frames, water_constraints, layout);
-        has_drained_walls = true;
+        separate_water_walls = true;
         std::map<unsigned int, unsigned int> water_node_at;
         for (unsigned int w = 0; w < water_nodes.size(); ++w)
           water_node_at[water_nodes[w].local_dofs[0]] = w;
@@ -403,7 +412,7 @@ namespace MPM
           }
       }
     else
-      has_drained_walls = false;
+      separate_water_walls = false;
   }
 
 
@@ -476,7 +485,7 @@ namespace MPM
   void
   BoundaryConditions<dim>::project_water_velocity(NodalVector &velocity) const
   {
-    if (!has_drained_walls)
+    if (!separate_water_walls)
       {
         project_velocity(velocity);
         return;
@@ -904,7 +913,7 @@ namespace MPM
   BoundaryConditions<dim>::water_drains_along(const unsigned int    k,
                                               const Tensor<1, dim> &n) const
   {
-    if (!has_drained_walls)
+    if (!separate_water_walls)
       return false;
     const unsigned int w = water_node_of_node[k];
     if (w == numbers::invalid_unsigned_int)

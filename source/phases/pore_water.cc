@@ -586,7 +586,7 @@ namespace MPM
     const std::vector<unsigned int> &active_dofs,
     const BoundaryConditions<dim>   &boundary_conditions)
   {
-    if (boundary_conditions.has_drained_wall())
+    if (boundary_conditions.has_separate_water_walls())
       {
         const double dt = time_step;
         for (const unsigned int i : active_dofs)

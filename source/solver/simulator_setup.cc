@@ -72,6 +72,7 @@ namespace MPM
     boundary_conditions.set_gravity(time_stepping.gravity);
     // Before the nodal fields are laid out: the water's are among them.
     pore_water.initialize(materials, nodal);
+    boundary_conditions.set_pore_water(pore_water.active());
     pore_water.set_skeleton_transfer(
       transfer.scheme().carries_affine_velocity());
     if (pore_water.active() &&

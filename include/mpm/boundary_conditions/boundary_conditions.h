@@ -127,6 +127,14 @@ namespace MPM
       gravity_magnitude = gravity.norm();
     }
 
+    /// Whether a material carries pore water; before setup(), which then
+    /// lays out the water's own walls (has_separate_water_walls()).
+    void
+    set_pore_water(const bool saturated)
+    {
+      with_pore_water = saturated;
+    }
+
     /**
      * Which frictional (unilateral) nodes a projection holds on their wall.
      */
@@ -168,22 +176,29 @@ namespace MPM
 
     /**
      * The walls' hold on the pore water's velocity (PoreWater): as
-     * project_velocity() (Contact::by_velocity) on the impermeable walls;
-     * a 'Drainage = drained' wall lets the water through.
+     * project_velocity() (Contact::by_velocity) on the impermeable walls,
+     * a fixed one holding the water's normal velocity alone; a 'Drainage
+     * = drained' wall lets the water through.
      */
     void
     project_water_velocity(NodalVector &velocity) const;
 
-    /// Whether a wall is 'Drainage = drained'.
+    /**
+     * With pore water (set_pore_water()): whether its walls are not the
+     * skeleton's, because a wall is 'Drainage = drained' (the water
+     * passes) or fixed (the water seeps along it: the water has no shear
+     * stress for a no-slip condition to act on).
+     */
     bool
-    has_drained_wall() const
+    has_separate_water_walls() const
     {
-      return has_drained_walls;
+      return separate_water_walls;
     }
 
     /**
      * At the nodes where the last nodal update held the skeleton on a
-     * wall that lets the water through: in the directions held for the
+     * wall that lets the water through (a drained wall) or along (a
+     * fixed one): in the directions held for the
      * skeleton and free for the water, P_w - P_s (the water's walls being
      * a subset of the skeleton's), replace @p velocity by
      * @p velocity_against_wall (PoreWater::finish_velocity()).
@@ -524,9 +539,12 @@ namespace MPM
     /// The dashpots of the boundaries of Type = absorbing.
     AbsorbingBoundaries<dim>   absorbing;
     BoundaryPorePressures<dim> pore_pressures;
-    /// Whether a wall is 'Drainage = drained', and then the projections
-    /// of the pore water's walls (the impermeable ones).
-    bool                         has_drained_walls = false;
+    /// Whether a material is saturated (set_pore_water()).
+    bool with_pore_water = false;
+    /// Whether the pore water's walls differ from the skeleton's
+    /// (has_separate_water_walls()), and then their projections: the
+    /// impermeable walls, each holding the water's normal velocity.
+    bool                         separate_water_walls = false;
     std::vector<ConstrainedNode> water_nodes;
     /// For each node of nodes: its index in water_nodes, or
     /// numbers::invalid_unsigned_int (the water is free there).
