@@ -1,10 +1,11 @@
 // The tank of prm/submerged_collapse.prm (L = 0.3 m long, H = 0.06 m
 // high) with cells graded towards the bed: hx = 2.5 mm along x, hb = 1.25
 // mm high at the bed, each row r = 1.025 times the one below (32 rows, to
-// 2.7 mm at the top; 120 x 32 cells). The collapse's cell dependence sits
-// in a layer at the bed (doc/pore_water.md, "What the cell changes: the
-// bed's layer"); this mesh gives the bed the 1.25 mm cells' stresses at a
-// third of their cells.
+// 2.7 mm at the top; 120 x 32 cells). On a Coulomb base of the beads'
+// own friction (the prm's header gives its --set lines) the collapse's
+// cell dependence sits in a layer at the bed (doc/pore_water.md, "What
+// the cell changes: the bed's layer"); this mesh gives the bed the 1.25 mm
+// cells' stresses at a third of their cells.
 // Boundary ids (physical tags): 4 the wall (x = 0), 1 the right end, 2
 // the bed, 3 the top; the file's wall is id 0, so run it as
 //   mpm prm/submerged_collapse.prm --set "Mesh/Source=gmsh" \
